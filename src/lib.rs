@@ -1,1 +1,11 @@
+//! aster-rs: an interpreter for Code_Aster command files.
+//!
+//! See `docs/ARCHITECTURE.md` for the bird's-eye view.
+
+pub mod catalog;
+pub mod concepts;
+pub mod diag;
+pub mod interp;
+pub mod runner;
+pub mod stages;
 pub mod syntax;

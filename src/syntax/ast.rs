@@ -135,11 +135,7 @@ pub struct Comprehension {
 #[derive(Debug, Clone)]
 pub enum FPart {
     Lit(String),
-    Field {
-        expr: Box<Expr>,
-        conv: Option<char>,
-        spec: Vec<FPart>,
-    },
+    Field { expr: Box<Expr>, conv: Option<char>, spec: Vec<FPart> },
 }
 
 #[derive(Debug, Clone)]
@@ -163,11 +159,7 @@ pub enum ExprKind {
     Compare(Box<Expr>, Vec<(CmpOp, Expr)>),
     And(Box<Expr>, Box<Expr>),
     Or(Box<Expr>, Box<Expr>),
-    IfExp {
-        cond: Box<Expr>,
-        then: Box<Expr>,
-        orelse: Box<Expr>,
-    },
+    IfExp { cond: Box<Expr>, then: Box<Expr>, orelse: Box<Expr> },
     Lambda(Rc<FuncDef>),
     Call(Box<Expr>, Vec<Arg>),
     Subscript(Box<Expr>, Box<Expr>),

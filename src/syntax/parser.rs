@@ -20,10 +20,7 @@ pub struct SyntaxError {
 type PResult<T> = Result<T, SyntaxError>;
 
 fn err<T>(offset: usize, message: impl Into<String>) -> PResult<T> {
-    Err(SyntaxError {
-        offset,
-        message: message.into(),
-    })
+    Err(SyntaxError { offset, message: message.into() })
 }
 
 /// Parse a whole command file.
@@ -92,18 +89,13 @@ fn describe(text: &str, offset: usize, v: &pest::error::ErrorVariant<Rule>) -> S
         Some('\n') | Some('\r') => "end of line".to_string(),
         Some(c) if c.is_whitespace() && rest.trim_start().is_empty() => "end of file".to_string(),
         Some(_) => {
-            let tok: String = rest
-                .chars()
-                .take_while(|c| !c.is_whitespace())
-                .take(20)
-                .collect();
+            let tok: String = rest.chars().take_while(|c| !c.is_whitespace()).take(20).collect();
             format!("'{tok}'")
         }
     };
     if let pest::error::ErrorVariant::ParsingError { positives, .. } = v {
         let indent_problem = positives.is_empty()
-            || (text[..offset.min(text.len())].ends_with('\n') || offset == 0)
-                && rest.starts_with([' ', '\t']);
+            || (text[..offset.min(text.len())].ends_with('\n') || offset == 0) && rest.starts_with([' ', '\t']);
         if indent_problem && rest.starts_with([' ', '\t']) {
             return "invalid syntax: unexpected indent".to_string();
         }
@@ -118,10 +110,7 @@ fn describe(text: &str, offset: usize, v: &pest::error::ErrorVariant<Rule>) -> S
 
 fn span(p: &Pair<Rule>) -> Span {
     let s = p.as_span();
-    Span {
-        start: s.start(),
-        end: s.end(),
-    }
+    Span { start: s.start(), end: s.end() }
 }
 
 fn ident(p: Pair<Rule>) -> String {
@@ -188,10 +177,7 @@ fn if_stmt(p: Pair<Rule>) -> PResult<Stmt> {
             r => unreachable!("{r:?}"),
         }
     }
-    Ok(Stmt {
-        kind: StmtKind::If { branches, orelse },
-        span: sp,
-    })
+    Ok(Stmt { kind: StmtKind::If { branches, orelse }, span: sp })
 }
 
 fn for_stmt(p: Pair<Rule>) -> PResult<Stmt> {
@@ -206,15 +192,7 @@ fn for_stmt(p: Pair<Rule>) -> PResult<Stmt> {
         Some(e) => else_suite(e)?,
         None => Vec::new(),
     };
-    Ok(Stmt {
-        kind: StmtKind::For {
-            target,
-            iter,
-            body,
-            orelse,
-        },
-        span: sp,
-    })
+    Ok(Stmt { kind: StmtKind::For { target, iter, body, orelse }, span: sp })
 }
 
 fn while_stmt(p: Pair<Rule>) -> PResult<Stmt> {
@@ -227,10 +205,7 @@ fn while_stmt(p: Pair<Rule>) -> PResult<Stmt> {
         Some(e) => else_suite(e)?,
         None => Vec::new(),
     };
-    Ok(Stmt {
-        kind: StmtKind::While { cond, body, orelse },
-        span: sp,
-    })
+    Ok(Stmt { kind: StmtKind::While { cond, body, orelse }, span: sp })
 }
 
 fn params(p: Pair<Rule>) -> PResult<Vec<Param>> {
@@ -240,9 +215,7 @@ fn params(p: Pair<Rule>) -> PResult<Vec<Param>> {
         let first = pi.next().unwrap();
         match first.as_rule() {
             Rule::star_param => out.push(Param::Star(ident(first.into_inner().next().unwrap()))),
-            Rule::dstar_param => {
-                out.push(Param::DoubleStar(ident(first.into_inner().next().unwrap())))
-            }
+            Rule::dstar_param => out.push(Param::DoubleStar(ident(first.into_inner().next().unwrap()))),
             Rule::ident => {
                 let default = match pi.next() {
                     Some(d) => Some(test(d)?),
@@ -270,16 +243,8 @@ fn def_stmt(p: Pair<Rule>) -> PResult<Stmt> {
             r => unreachable!("{r:?}"),
         }
     }
-    let def = Rc::new(FuncDef {
-        name,
-        params: prms,
-        body,
-        span: sp,
-    });
-    Ok(Stmt {
-        kind: StmtKind::Def(def),
-        span: sp,
-    })
+    let def = Rc::new(FuncDef { name, params: prms, body, span: sp });
+    Ok(Stmt { kind: StmtKind::Def(def), span: sp })
 }
 
 fn small_stmt(p: Pair<Rule>) -> PResult<Stmt> {
@@ -390,10 +355,7 @@ fn expr_stmt(p: Pair<Rule>) -> PResult<StmtKind> {
             targets.push(target_list(part)?);
         }
     }
-    Ok(StmtKind::Assign {
-        targets,
-        value: value.unwrap(),
-    })
+    Ok(StmtKind::Assign { targets, value: value.unwrap() })
 }
 
 fn has_trailing_comma(p: &Pair<Rule>) -> bool {
@@ -423,9 +385,7 @@ fn target(p: Pair<Rule>) -> PResult<Expr> {
         r => unreachable!("{r:?}"),
     };
     match &e.kind {
-        ExprKind::Name(_) | ExprKind::Subscript(..) | ExprKind::Attr(..) | ExprKind::Tuple(_) => {
-            Ok(e)
-        }
+        ExprKind::Name(_) | ExprKind::Subscript(..) | ExprKind::Attr(..) | ExprKind::Tuple(_) => Ok(e),
         _ => err(sp.start, "invalid syntax: cannot assign to expression"),
     }
 }
@@ -473,10 +433,7 @@ fn lambda(p: Pair<Rule>) -> PResult<Expr> {
     let def = FuncDef {
         name: "<lambda>".into(),
         params: prms,
-        body: vec![Stmt {
-            kind: StmtKind::Return(Some(body)),
-            span: bsp,
-        }],
+        body: vec![Stmt { kind: StmtKind::Return(Some(body)), span: bsp }],
         span: sp,
     };
     Ok(Expr::new(ExprKind::Lambda(Rc::new(def)), sp))
@@ -492,14 +449,7 @@ fn ternary(p: Pair<Rule>) -> PResult<Expr> {
     let cond = or_test(inner.next().unwrap())?;
     inner.next(); // else
     let orelse = test(inner.next().unwrap())?;
-    Ok(Expr::new(
-        ExprKind::IfExp {
-            cond: Box::new(cond),
-            then: Box::new(first),
-            orelse: Box::new(orelse),
-        },
-        sp,
-    ))
+    Ok(Expr::new(ExprKind::IfExp { cond: Box::new(cond), then: Box::new(first), orelse: Box::new(orelse) }, sp))
 }
 
 fn or_test(p: Pair<Rule>) -> PResult<Expr> {
@@ -581,14 +531,8 @@ fn arith(p: Pair<Rule>) -> PResult<Expr> {
     let mut acc = term(inner.next().unwrap())?;
     while let Some(op) = inner.next() {
         let r = term(inner.next().unwrap())?;
-        let sp = Span {
-            start: acc.span.start,
-            end: r.span.end,
-        };
-        acc = Expr::new(
-            ExprKind::BinOp(Box::new(acc), binop(op.as_str()), Box::new(r)),
-            sp,
-        );
+        let sp = Span { start: acc.span.start, end: r.span.end };
+        acc = Expr::new(ExprKind::BinOp(Box::new(acc), binop(op.as_str()), Box::new(r)), sp);
     }
     Ok(acc)
 }
@@ -598,14 +542,8 @@ fn term(p: Pair<Rule>) -> PResult<Expr> {
     let mut acc = factor(inner.next().unwrap())?;
     while let Some(op) = inner.next() {
         let r = factor(inner.next().unwrap())?;
-        let sp = Span {
-            start: acc.span.start,
-            end: r.span.end,
-        };
-        acc = Expr::new(
-            ExprKind::BinOp(Box::new(acc), binop(op.as_str()), Box::new(r)),
-            sp,
-        );
+        let sp = Span { start: acc.span.start, end: r.span.end };
+        acc = Expr::new(ExprKind::BinOp(Box::new(acc), binop(op.as_str()), Box::new(r)), sp);
     }
     Ok(acc)
 }
@@ -642,10 +580,7 @@ fn power(p: Pair<Rule>) -> PResult<Expr> {
         None => Ok(base),
         Some(e) => {
             let exp = factor(e)?;
-            Ok(Expr::new(
-                ExprKind::BinOp(Box::new(base), BinOp::Pow, Box::new(exp)),
-                sp,
-            ))
+            Ok(Expr::new(ExprKind::BinOp(Box::new(base), BinOp::Pow, Box::new(exp)), sp))
         }
     }
 }
@@ -656,10 +591,7 @@ fn postfix(p: Pair<Rule>) -> PResult<Expr> {
     for tr in inner {
         let t = tr.into_inner().next().unwrap();
         let tsp = span(&t);
-        let sp = Span {
-            start: acc.span.start,
-            end: tsp.end,
-        };
+        let sp = Span { start: acc.span.start, end: tsp.end };
         acc = match t.as_rule() {
             Rule::call => {
                 let args = match t.into_inner().next() {
@@ -707,9 +639,7 @@ fn subscript_item(p: Pair<Rule>) -> PResult<Expr> {
             let mut last_end = text_start;
             for c in inner.into_inner() {
                 let csp = span(&c);
-                slot += raw[last_end - text_start..csp.start - text_start]
-                    .matches(':')
-                    .count();
+                slot += raw[last_end - text_start..csp.start - text_start].matches(':').count();
                 parts[slot.min(2)] = Some(Box::new(test(c)?));
                 last_end = csp.end;
             }
@@ -742,19 +672,13 @@ fn arglist(p: Pair<Rule>) -> PResult<Vec<Arg>> {
             }
             Rule::test => {
                 if seen_kw {
-                    return err(
-                        asp.start,
-                        "invalid syntax: positional argument follows keyword argument",
-                    );
+                    return err(asp.start, "invalid syntax: positional argument follows keyword argument");
                 }
                 let e = test(first)?;
                 match ai.next() {
                     Some(cf) => {
                         let comps = comp_for(cf)?;
-                        out.push(Arg::Positional(Expr::new(
-                            ExprKind::GenExp(Box::new(e), comps),
-                            asp,
-                        )))
+                        out.push(Arg::Positional(Expr::new(ExprKind::GenExp(Box::new(e), comps), asp)))
                     }
                     None => out.push(Arg::Positional(e)),
                 }
@@ -776,11 +700,7 @@ fn comp_for(p: Pair<Rule>) -> PResult<Vec<Comprehension>> {
                 let target = target_list(ci.next().unwrap())?;
                 ci.next(); // in
                 let iter = or_test(ci.next().unwrap())?;
-                out.push(Comprehension {
-                    target,
-                    iter,
-                    conds: Vec::new(),
-                });
+                out.push(Comprehension { target, iter, conds: Vec::new() });
                 cur = ci.next();
             }
             Rule::comp_if => {
@@ -828,10 +748,7 @@ fn atom(p: Pair<Rule>) -> PResult<Expr> {
             match parts.len() {
                 0 => ExprKind::List(Vec::new()),
                 1 => match testlist(parts.into_iter().next().unwrap())? {
-                    Expr {
-                        kind: ExprKind::Tuple(items),
-                        ..
-                    } => ExprKind::List(items),
+                    Expr { kind: ExprKind::Tuple(items), .. } => ExprKind::List(items),
                     e => ExprKind::List(vec![e]),
                 },
                 _ => {
@@ -892,18 +809,16 @@ fn number(p: Pair<Rule>) -> PResult<Expr> {
                 i64::from_str_radix(b, 2)
             } else {
                 if lower.len() > 1 && lower.starts_with('0') && lower.chars().any(|c| c != '0') {
-                    return err(sp.start, "invalid syntax: leading zeros in decimal integer literals are not permitted");
+                    return err(
+                        sp.start,
+                        "invalid syntax: leading zeros in decimal integer literals are not permitted",
+                    );
                 }
                 lower.parse::<i64>()
             };
             match parsed {
                 Ok(v) => ExprKind::Int(v),
-                Err(_) => {
-                    return err(
-                        sp.start,
-                        format!("integer literal '{text}' is out of range"),
-                    )
-                }
+                Err(_) => return err(sp.start, format!("integer literal '{text}' is out of range")),
             }
         }
         r => unreachable!("{r:?}"),
@@ -927,11 +842,7 @@ fn strings(p: Pair<Rule>) -> PResult<Expr> {
         }
         let body = body.unwrap();
         let raw_text = body.as_str();
-        let q = if matches!(body.as_rule(), Rule::long_dq | Rule::long_sq) {
-            3
-        } else {
-            1
-        };
+        let q = if matches!(body.as_rule(), Rule::long_dq | Rule::long_sq) { 3 } else { 1 };
         let content = &raw_text[q..raw_text.len() - q];
         let content_off = span(&body).start + q;
         let raw = prefix.contains('r');
@@ -940,11 +851,7 @@ fn strings(p: Pair<Rule>) -> PResult<Expr> {
             let mut fparts = fstring(content, content_off, raw)?;
             parts.append(&mut fparts);
         } else {
-            let text = if raw {
-                content.to_string()
-            } else {
-                unescape(content, ssp.start)?
-            };
+            let text = if raw { content.to_string() } else { unescape(content, ssp.start)? };
             parts.push(FPart::Lit(text));
         }
     }
@@ -1013,11 +920,7 @@ fn fstring(content: &str, off: usize, raw: bool) -> PResult<Vec<FPart>> {
     let mut i = 0;
     let flush = |lit: &mut String, parts: &mut Vec<FPart>| -> PResult<()> {
         if !lit.is_empty() {
-            let t = if raw {
-                lit.clone()
-            } else {
-                unescape(lit, off)?
-            };
+            let t = if raw { lit.clone() } else { unescape(lit, off)? };
             parts.push(FPart::Lit(t));
             lit.clear();
         }
@@ -1065,11 +968,7 @@ fn fstring(content: &str, off: usize, raw: bool) -> PResult<Vec<FPart>> {
                 depth -= 1;
             } else if depth == 0 && ch == '}' {
                 break;
-            } else if depth == 0
-                && ch == '!'
-                && spec_at.is_none()
-                && b.get(j + 1).map(|x| x.1) != Some('=')
-            {
+            } else if depth == 0 && ch == '!' && spec_at.is_none() && b.get(j + 1).map(|x| x.1) != Some('=') {
                 conv_at = Some(j);
             } else if depth == 0 && ch == ':' && spec_at.is_none() {
                 spec_at = Some(j);
@@ -1111,11 +1010,7 @@ fn fstring(content: &str, off: usize, raw: bool) -> PResult<Vec<FPart>> {
             Some(s) => fstring(&content[byte(s + 1)..byte(j)], off + byte(s + 1), raw)?,
             None => Vec::new(),
         };
-        parts.push(FPart::Field {
-            expr: Box::new(expr),
-            conv,
-            spec,
-        });
+        parts.push(FPart::Field { expr: Box::new(expr), conv, spec });
         i = j + 1;
     }
     flush(&mut lit, &mut parts)?;
@@ -1132,39 +1027,17 @@ mod tests {
 
     #[test]
     fn numeric_literals() {
-        for (src, want) in [
-            ("5800E6", 5800e6),
-            ("1.E-6", 1e-6),
-            (".5", 0.5),
-            ("1.", 1.0),
-            ("2.5e+3", 2500.0),
-        ] {
+        for (src, want) in [("5800E6", 5800e6), ("1.E-6", 1e-6), (".5", 0.5), ("1.", 1.0), ("2.5e+3", 2500.0)] {
             let m = parse(&format!("x = {src}\n"));
             match &m.body[0].kind {
-                StmtKind::Assign {
-                    value:
-                        Expr {
-                            kind: ExprKind::Float(v),
-                            ..
-                        },
-                    ..
-                } => {
+                StmtKind::Assign { value: Expr { kind: ExprKind::Float(v), .. }, .. } => {
                     assert_eq!(*v, want, "{src}")
                 }
                 k => panic!("{src}: {k:?}"),
             }
         }
         let m = parse("x = 42\n");
-        assert!(matches!(
-            &m.body[0].kind,
-            StmtKind::Assign {
-                value: Expr {
-                    kind: ExprKind::Int(42),
-                    ..
-                },
-                ..
-            }
-        ));
+        assert!(matches!(&m.body[0].kind, StmtKind::Assign { value: Expr { kind: ExprKind::Int(42), .. }, .. }));
     }
 
     #[test]
@@ -1197,24 +1070,14 @@ mod tests {
         let e = parse_module("A = 1\nB = (2,\nC = 3 +\n").unwrap_err();
         assert!(e.message.contains("invalid syntax"), "{e:?}");
         let e = parse_module("A = 1\n  B = 2\n").unwrap_err();
-        assert_eq!(
-            crate::syntax::lexer::line_col("A = 1\n  B = 2\n", e.offset).0,
-            2
-        );
+        assert_eq!(crate::syntax::lexer::line_col("A = 1\n  B = 2\n", e.offset).0, 2);
     }
 
     #[test]
     fn fstrings() {
         let m = parse("s = f'{a:>{w}} and {b!r}{{x}}'\n");
         match &m.body[0].kind {
-            StmtKind::Assign {
-                value:
-                    Expr {
-                        kind: ExprKind::FString(parts),
-                        ..
-                    },
-                ..
-            } => {
+            StmtKind::Assign { value: Expr { kind: ExprKind::FString(parts), .. }, .. } => {
                 assert_eq!(parts.len(), 4)
             }
             k => panic!("{k:?}"),

@@ -1,0 +1,655 @@
+//! Checking a command call against its schema — the one place that validates
+//! keywords.
+
+use super::args::{Arg, ArgValue, Args, Val};
+use super::schema::*;
+use crate::concepts::ConceptRef;
+use crate::diag::{Error, Result};
+use crate::interp::{format, KwArg, Value};
+use crate::syntax::ast::Span;
+
+/// The outcome of validating one call.
+pub struct Validated {
+    pub args: Args,
+    /// The concept named by `reuse=`, if any.
+    pub reuse: Option<ConceptRef>,
+}
+
+/// Validate the keyword arguments of a call to `cmd`.
+pub fn validate(cmd: &Command, kwargs: Vec<KwArg>, span: Span) -> Result<Validated> {
+    let mut reuse = None;
+    let mut given = Vec::new();
+    for k in kwargs {
+        if k.name == "reuse" {
+            match (&k.value, cmd.reentrant) {
+                (_, Reentrant::No) => {
+                    return Err(cat_err(cmd.name, format!("{} does not accept reuse=", cmd.name), k.span))
+                }
+                (Value::Concept(c), _) => reuse = Some(c.clone()),
+                (v, _) => {
+                    return Err(cat_err(
+                        cmd.name,
+                        format!("reuse= expects a concept, got {} {}", v.type_name(), format::repr(v)),
+                        k.span,
+                    ))
+                }
+            }
+            continue;
+        }
+        given.push(k);
+    }
+    if cmd.reentrant == Reentrant::Mandatory && reuse.is_none() {
+        return Err(cat_err(cmd.name, format!("{} requires reuse=", cmd.name), span));
+    }
+    let level = Level { cmd: cmd.name, path: cmd.name.to_string(), open: cmd.open };
+    let args = level.check(&cmd.entries, &cmd.rules, given, span, &[])?;
+    Ok(Validated { args, reuse })
+}
+
+fn cat_err(cmd: &str, msg: String, span: Span) -> Error {
+    Error::catalog(msg).at(span).in_command(cmd)
+}
+
+struct Level<'a> {
+    cmd: &'a str,
+    /// "CMD" or "CMD/FACT" — used in messages.
+    path: String,
+    open: bool,
+}
+
+/// Where a keyword is declared: active now, or only inside an inactive block.
+enum Found<'e> {
+    Active,
+    Inactive(&'e Cond),
+    No,
+}
+
+impl<'a> Level<'a> {
+    fn err(&self, msg: impl Into<String>, span: Span) -> Error {
+        let msg = msg.into();
+        let msg = match self.path.split_once('/') {
+            Some((_, fpath)) => format!("{msg} (in {fpath})"),
+            None => msg,
+        };
+        cat_err(self.cmd, msg, span)
+    }
+
+    fn check(
+        &self,
+        entries: &[Entry],
+        rules: &[Rule],
+        given: Vec<KwArg>,
+        span: Span,
+        parents: &[&Args],
+    ) -> Result<Args> {
+        // `X=None` means the keyword is absent, as in Code_Aster.
+        let given: Vec<KwArg> = given.into_iter().filter(|k| !matches!(k.value, Value::None)).collect();
+
+        // 1. Which entries are active, given the values and the defaults.
+        let mut active: Vec<&Entry> = Vec::new();
+        let mut active_rules: Vec<&Rule> = rules.iter().collect();
+        self.collect_active(entries, &given, parents, &mut active, &mut active_rules);
+
+        // 2. Every given keyword must be active.
+        for k in &given {
+            match find(entries, &active, &k.name) {
+                Found::Active => {}
+                Found::Inactive(cond) => {
+                    return Err(self.err(
+                        format!("keyword '{}' is not allowed here: it requires {}", k.name, describe(cond)),
+                        k.span,
+                    ))
+                }
+                Found::No if self.open => {}
+                Found::No => {
+                    let mut names = Vec::new();
+                    all_names(entries, &mut names);
+                    let hint = match suggest(&k.name, &names) {
+                        Some(s) => format!(" (did you mean '{s}'?)"),
+                        None => String::new(),
+                    };
+                    return Err(self.err(format!("unknown keyword '{}'{hint}", k.name), k.span));
+                }
+            }
+        }
+
+        // 3. Convert and check each active entry. A name may be declared both
+        // as a simple and as a factor keyword (DEBUT's CODE): the value decides.
+        let has_fact = |n: &str| active.iter().any(|e| matches!(e, Entry::Fact(f) if f.name == n));
+        let has_simp = |n: &str| active.iter().any(|e| matches!(e, Entry::Simp(s) if s.name == n));
+        let mut out = Args { path: self.path.clone(), span, items: Vec::new() };
+        for e in &active {
+            match e {
+                Entry::Simp(s) => {
+                    let k = given.iter().find(|k| k.name == s.name);
+                    if k.map(|k| is_factor_value(&k.value) && has_fact(s.name)).unwrap_or(false) {
+                        continue;
+                    }
+                    if k.is_none() && has_fact(s.name) && matches!(s.statut, Statut::F) {
+                        continue;
+                    }
+                    if let Some(k) = k {
+                        let vals = self.simple_values(s, &k.value, k.span)?;
+                        out.items.push(Arg {
+                            name: s.name.into(),
+                            value: ArgValue::Simple(vals),
+                            span: k.span,
+                            defaulted: false,
+                        });
+                    } else {
+                        match &s.statut {
+                            Statut::O => {
+                                return Err(self.err(format!("mandatory keyword '{}' is missing", s.name), span))
+                            }
+                            Statut::D(d) => out.items.push(Arg {
+                                name: s.name.into(),
+                                value: ArgValue::Simple(d.iter().map(lit_val).collect()),
+                                span,
+                                defaulted: true,
+                            }),
+                            Statut::F => {}
+                        }
+                    }
+                }
+                Entry::Fact(f) => {
+                    let mut chain: Vec<&Args> = vec![&out];
+                    chain.extend_from_slice(parents);
+                    // `out` is borrowed for conditions of the nested level; build then push.
+                    let k = given.iter().find(|k| k.name == f.name);
+                    if k.map(|k| !is_factor_value(&k.value) && has_simp(f.name)).unwrap_or(false) {
+                        continue;
+                    }
+                    let occ = if let Some(k) = k {
+                        Some((self.factor(f, &k.value, k.span, &chain)?, k.span, false))
+                    } else {
+                        match f.statut {
+                            FactStatut::O => {
+                                return Err(self.err(format!("mandatory keyword '{}' is missing", f.name), span))
+                            }
+                            FactStatut::D => {
+                                let lvl =
+                                    Level { cmd: self.cmd, path: format!("{}/{}", self.path, f.name), open: false };
+                                Some((vec![lvl.check(&f.entries, &f.rules, Vec::new(), span, &chain)?], span, true))
+                            }
+                            FactStatut::F => None,
+                        }
+                    };
+                    if let Some((occ, sp, defaulted)) = occ {
+                        out.items.push(Arg { name: f.name.into(), value: ArgValue::Factor(occ), span: sp, defaulted });
+                    }
+                }
+                Entry::Bloc(_) => unreachable!("blocks are flattened"),
+            }
+        }
+        if self.open {
+            for k in &given {
+                if matches!(find(entries, &active, &k.name), Found::No) {
+                    let v = match &k.value {
+                        Value::Concept(c) => Val::Concept(c.clone()),
+                        v => Val::Callable(v.clone()),
+                    };
+                    out.items.push(Arg {
+                        name: k.name.clone(),
+                        value: ArgValue::Simple(vec![v]),
+                        span: k.span,
+                        defaulted: false,
+                    });
+                }
+            }
+        }
+
+        // 4. Rules.
+        for r in active_rules {
+            self.check_rule(r, &out, span)?;
+        }
+        Ok(out)
+    }
+
+    fn collect_active<'e>(
+        &self,
+        entries: &'e [Entry],
+        given: &[KwArg],
+        parents: &[&Args],
+        active: &mut Vec<&'e Entry>,
+        rules: &mut Vec<&'e Rule>,
+    ) {
+        for e in entries {
+            match e {
+                Entry::Bloc(b) => {
+                    if self.holds(&b.cond, given, active, parents) {
+                        rules.extend(b.rules.iter());
+                        self.collect_active(&b.entries, given, parents, active, rules);
+                    }
+                }
+                _ => active.push(e),
+            }
+        }
+    }
+
+    /// The first value of keyword `name` as a literal: given, else the default
+    /// of an active entry, else from an enclosing level.
+    fn value_of(&self, name: &str, given: &[KwArg], active: &[&Entry], parents: &[&Args]) -> Option<Probe> {
+        if let Some(k) = given.iter().find(|k| k.name == name) {
+            let first = match &k.value {
+                Value::Tuple(_) | Value::List(_) => k.value.iter_items().ok()?.into_iter().next()?,
+                v => v.clone(),
+            };
+            return match first {
+                Value::Str(s) => Some(Probe::T(s.to_string())),
+                Value::Int(i) => Some(Probe::I(i)),
+                Value::Float(f) => Some(Probe::R(f)),
+                Value::Bool(b) => Some(Probe::I(b as i64)),
+                // A concept or other object: present, with no comparable value.
+                _ => Some(Probe::Present),
+            };
+        }
+        for e in active {
+            if let Entry::Simp(s) = e {
+                if s.name == name {
+                    if let Statut::D(d) = &s.statut {
+                        return d.first().map(|l| Probe::from_val(&lit_val(l)));
+                    }
+                }
+            }
+            if let Entry::Fact(f) = e {
+                if f.name == name && f.statut == FactStatut::D {
+                    return Some(Probe::Present);
+                }
+            }
+        }
+        for p in parents {
+            if let Some(a) = p.get(name) {
+                return match &a.value {
+                    ArgValue::Simple(v) => v.first().map(Probe::from_val),
+                    ArgValue::Factor(_) => Some(Probe::Present),
+                };
+            }
+        }
+        None
+    }
+
+    fn holds(&self, c: &Cond, given: &[KwArg], active: &[&Entry], parents: &[&Args]) -> bool {
+        match c {
+            Cond::Eq(k, v) => self.value_of(k, given, active, parents).map(|x| x.matches(v)).unwrap_or(false),
+            Cond::In(k, vs) => {
+                self.value_of(k, given, active, parents).map(|x| vs.iter().any(|v| x.matches(v))).unwrap_or(false)
+            }
+            Cond::Present(k) => self.value_of(k, given, active, parents).is_some(),
+            Cond::Absent(k) => self.value_of(k, given, active, parents).is_none(),
+            Cond::And(cs) => cs.iter().all(|c| self.holds(c, given, active, parents)),
+            Cond::Or(cs) => cs.iter().any(|c| self.holds(c, given, active, parents)),
+        }
+    }
+
+    fn factor(&self, f: &Fact, v: &Value, span: Span, parents: &[&Args]) -> Result<Vec<Args>> {
+        let occurrences: Vec<Value> = match v {
+            Value::Dict(_) => vec![v.clone()],
+            Value::Tuple(_) | Value::List(_) => v.iter_items()?,
+            other => {
+                return Err(self.err(
+                    format!(
+                        "keyword '{}' expects _F(...) or a list of _F(...), got {} {}",
+                        f.name,
+                        other.type_name(),
+                        format::repr(other)
+                    ),
+                    span,
+                ))
+            }
+        };
+        if occurrences.len() < f.min {
+            return Err(self.err(format!("keyword '{}' needs at least {} occurrence(s)", f.name, f.min), span));
+        }
+        if let Some(max) = f.max {
+            if occurrences.len() > max {
+                return Err(self.err(
+                    format!("keyword '{}' takes at most {max} occurrence(s), {} given", f.name, occurrences.len()),
+                    span,
+                ));
+            }
+        }
+        let lvl = Level { cmd: self.cmd, path: format!("{}/{}", self.path, f.name), open: false };
+        let mut out = Vec::new();
+        for occ in occurrences {
+            let Value::Dict(d) = &occ else {
+                return Err(
+                    self.err(format!("each occurrence of '{}' must be _F(...), got {}", f.name, occ.type_name()), span)
+                );
+            };
+            let mut kws = Vec::new();
+            for (k, val) in d.borrow().items.iter() {
+                let Some(name) = k.as_str() else {
+                    return Err(self.err(format!("keywords of '{}' must be strings", f.name), span));
+                };
+                kws.push(KwArg { name: name.to_string(), value: val.clone(), span });
+            }
+            out.push(lvl.check(&f.entries, &f.rules, kws, span, parents)?);
+        }
+        Ok(out)
+    }
+
+    fn simple_values(&self, s: &Simp, v: &Value, span: Span) -> Result<Vec<Val>> {
+        if matches!(v, Value::Dict(_)) {
+            return Err(
+                self.err(format!("keyword '{}' is a simple keyword; _F(...) is not allowed here", s.name), span)
+            );
+        }
+        let items = match v {
+            Value::Tuple(_) | Value::List(_) => v.iter_items()?,
+            _ => vec![v.clone()],
+        };
+        let n = items.len();
+        if let Some(max) = s.max {
+            if n > max {
+                return Err(self.err(format!("keyword '{}' takes at most {max} value(s), {n} given", s.name), span));
+            }
+        }
+        if n < s.min.max(1) {
+            return Err(
+                self.err(format!("keyword '{}' needs at least {} value(s), {n} given", s.name, s.min.max(1)), span)
+            );
+        }
+        let mut out = Vec::with_capacity(n);
+        for item in &items {
+            let val = s.types.iter().find_map(|t| convert(t, item)).ok_or_else(|| {
+                let want: Vec<String> = s.types.iter().map(type_desc).collect();
+                self.err(
+                    format!(
+                        "keyword '{}' expects {}, got {} {}",
+                        s.name,
+                        want.join(" or "),
+                        item.type_name(),
+                        short_repr(item)
+                    ),
+                    span,
+                )
+            })?;
+            if let Some(allowed) = &s.allowed {
+                if !allowed.iter().any(|a| val_eq_lit(&val, a)) {
+                    let list: Vec<String> = allowed.iter().map(|a| a.to_string()).collect();
+                    let hint = match &val {
+                        Val::T(t) => {
+                            let names: Vec<&str> = allowed
+                                .iter()
+                                .filter_map(|a| if let Lit::T(t) = a { Some(*t) } else { None })
+                                .collect();
+                            suggest(t, &names).map(|x| format!(" (did you mean '{x}'?)")).unwrap_or_default()
+                        }
+                        _ => String::new(),
+                    };
+                    return Err(self.err(
+                        format!(
+                            "value {} is not allowed for keyword '{}'{hint}; allowed: {}",
+                            val.show(),
+                            s.name,
+                            list.join(", ")
+                        ),
+                        span,
+                    ));
+                }
+            }
+            if let Some(x) = val.as_f64() {
+                if s.val_min.map(|m| x < m).unwrap_or(false) || s.val_max.map(|m| x > m).unwrap_or(false) {
+                    return Err(self.err(
+                        format!(
+                            "value {} of keyword '{}' is outside [{}, {}]",
+                            val.show(),
+                            s.name,
+                            s.val_min.map(|m| m.to_string()).unwrap_or("-inf".into()),
+                            s.val_max.map(|m| m.to_string()).unwrap_or("+inf".into())
+                        ),
+                        span,
+                    ));
+                }
+            }
+            out.push(val);
+        }
+        Ok(out)
+    }
+
+    fn check_rule(&self, r: &Rule, a: &Args, span: Span) -> Result<()> {
+        let present =
+            |names: &[&str]| -> Vec<String> { names.iter().filter(|n| a.has(n)).map(|n| n.to_string()).collect() };
+        let quoted = |v: &[&str]| v.iter().map(|n| format!("'{n}'")).collect::<Vec<_>>().join(", ");
+        match r {
+            Rule::UnParmi(ks) => {
+                let p = present(ks);
+                if p.len() != 1 {
+                    let got = if p.is_empty() { "none".to_string() } else { p.join(" and ") };
+                    return Err(self.err(format!("exactly one of {} is required (got {got})", quoted(ks)), span));
+                }
+            }
+            Rule::AuMoinsUn(ks) => {
+                if present(ks).is_empty() {
+                    return Err(self.err(format!("at least one of {} is required", quoted(ks)), span));
+                }
+            }
+            Rule::Exclus(ks) => {
+                let p = present(ks);
+                if p.len() > 1 {
+                    return Err(
+                        self.err(format!("{} are mutually exclusive (got {})", quoted(ks), p.join(" and ")), span)
+                    );
+                }
+            }
+            Rule::Ensemble(ks) => {
+                let p = present(ks);
+                if !p.is_empty() && p.len() != ks.len() {
+                    return Err(
+                        self.err(format!("{} go together: all or none (got only {})", quoted(ks), p.join(", ")), span)
+                    );
+                }
+            }
+            Rule::PresentPresent(first, ks) => {
+                if a.has(first) {
+                    let missing: Vec<&str> = ks.iter().filter(|k| !a.has(k)).copied().collect();
+                    if !missing.is_empty() {
+                        return Err(self.err(format!("'{first}' requires {}", quoted(&missing)), span));
+                    }
+                }
+            }
+            Rule::PresentAbsent(first, ks) => {
+                if a.has(first) {
+                    let p = present(ks);
+                    if !p.is_empty() {
+                        return Err(self.err(format!("'{first}' excludes {}", p.join(", ")), span));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+fn find<'e>(entries: &'e [Entry], active: &[&'e Entry], name: &str) -> Found<'e> {
+    let is = |e: &Entry| match e {
+        Entry::Simp(s) => s.name == name,
+        Entry::Fact(f) => f.name == name,
+        Entry::Bloc(_) => false,
+    };
+    if active.iter().any(|e| is(e)) {
+        return Found::Active;
+    }
+    fn in_blocs<'e>(entries: &'e [Entry], name: &str) -> Option<&'e Cond> {
+        for e in entries {
+            if let Entry::Bloc(b) = e {
+                let direct = b.entries.iter().any(|x| match x {
+                    Entry::Simp(s) => s.name == name,
+                    Entry::Fact(f) => f.name == name,
+                    Entry::Bloc(_) => false,
+                });
+                if direct {
+                    return Some(&b.cond);
+                }
+                if let Some(c) = in_blocs(&b.entries, name) {
+                    return Some(c);
+                }
+            }
+        }
+        None
+    }
+    match in_blocs(entries, name) {
+        Some(c) => Found::Inactive(c),
+        None => Found::No,
+    }
+}
+
+fn is_factor_value(v: &Value) -> bool {
+    match v {
+        Value::Dict(_) => true,
+        Value::Tuple(_) | Value::List(_) => {
+            let items = v.iter_items().unwrap_or_default();
+            !items.is_empty() && items.iter().all(|i| matches!(i, Value::Dict(_)))
+        }
+        _ => false,
+    }
+}
+
+fn all_names<'e>(entries: &'e [Entry], out: &mut Vec<&'e str>) {
+    for e in entries {
+        match e {
+            Entry::Simp(s) => out.push(s.name),
+            Entry::Fact(f) => out.push(f.name),
+            Entry::Bloc(b) => all_names(&b.entries, out),
+        }
+    }
+}
+
+fn describe(c: &Cond) -> String {
+    match c {
+        Cond::Eq(k, v) => format!("{k}={v}"),
+        Cond::In(k, vs) => format!("{k} in ({})", vs.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")),
+        Cond::Present(k) => format!("{k} to be given"),
+        Cond::Absent(k) => format!("{k} to be absent"),
+        Cond::And(cs) => cs.iter().map(describe).collect::<Vec<_>>().join(" and "),
+        Cond::Or(cs) => cs.iter().map(describe).collect::<Vec<_>>().join(" or "),
+    }
+}
+
+/// A keyword value as block conditions see it.
+enum Probe {
+    T(String),
+    I(i64),
+    R(f64),
+    /// Present, with no value a condition can compare (a concept, a factor).
+    Present,
+}
+
+impl Probe {
+    fn from_val(v: &Val) -> Probe {
+        match v {
+            Val::T(t) => Probe::T(t.clone()),
+            Val::I(i) => Probe::I(*i),
+            Val::R(r) => Probe::R(*r),
+            _ => Probe::Present,
+        }
+    }
+    fn matches(&self, l: &Lit) -> bool {
+        match (self, l) {
+            (Probe::T(x), Lit::T(y)) => x == y,
+            (Probe::I(x), Lit::I(y)) => x == y,
+            (Probe::R(x), Lit::R(y)) => x == y,
+            (Probe::I(x), Lit::R(y)) | (Probe::R(y), Lit::I(x)) => *x as f64 == *y,
+            _ => false,
+        }
+    }
+}
+
+fn lit_val(l: &Lit) -> Val {
+    match l {
+        Lit::I(i) => Val::I(*i),
+        Lit::R(r) => Val::R(*r),
+        Lit::T(t) => Val::T(t.to_string()),
+    }
+}
+
+fn val_eq_lit(v: &Val, l: &Lit) -> bool {
+    match (v, l) {
+        (Val::T(a), Lit::T(b)) => a == b,
+        (Val::I(a), Lit::I(b)) => a == b,
+        (Val::R(a), Lit::R(b)) => a == b,
+        (Val::I(a), Lit::R(b)) | (Val::R(b), Lit::I(a)) => *a as f64 == *b,
+        _ => false,
+    }
+}
+
+fn convert(t: &Ty, v: &Value) -> Option<Val> {
+    match (t, v) {
+        (Ty::I, Value::Int(i)) => Some(Val::I(*i)),
+        (Ty::I, Value::Bool(b)) => Some(Val::I(*b as i64)),
+        (Ty::R, Value::Float(f)) => Some(Val::R(*f)),
+        (Ty::R, Value::Int(i)) => Some(Val::R(*i as f64)),
+        (Ty::C, Value::Complex(a, b)) => Some(Val::C(*a, *b)),
+        (Ty::C, v) if v.as_f64().is_some() => Some(Val::C(v.as_f64().unwrap(), 0.0)),
+        (Ty::Txm, Value::Str(s)) => Some(Val::T(s.to_string())),
+        (Ty::Co(kinds), Value::Concept(c)) if kinds.contains(&c.kind()) => Some(Val::Concept(c.clone())),
+        (Ty::Callable, Value::Func(_) | Value::Builtin(_) | Value::Method(..)) => Some(Val::Callable(v.clone())),
+        _ => None,
+    }
+}
+
+fn type_desc(t: &Ty) -> String {
+    match t {
+        Ty::I => "an integer".into(),
+        Ty::R => "a real".into(),
+        Ty::C => "a complex".into(),
+        Ty::Txm => "a text".into(),
+        Ty::Co(k) => k.iter().map(|k| k.aster_name()).collect::<Vec<_>>().join(" or "),
+        Ty::Callable => "a Python function".into(),
+    }
+}
+
+fn short_repr(v: &Value) -> String {
+    let r = format::repr(v);
+    if r.chars().count() > 40 {
+        format!("{}...", r.chars().take(37).collect::<String>())
+    } else {
+        r
+    }
+}
+
+/// Edit distance with adjacent transpositions.
+fn distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
+    let b: Vec<char> = b.chars().collect();
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    for (j, cell) in d[0].iter_mut().enumerate() {
+        *cell = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            d[i][j] = (d[i - 1][j] + 1).min(d[i][j - 1] + 1).min(d[i - 1][j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                d[i][j] = d[i][j].min(d[i - 2][j - 2] + 1);
+            }
+        }
+    }
+    d[a.len()][b.len()]
+}
+
+/// The closest name, if close enough to be a plausible typo.
+pub fn suggest<'n>(word: &str, names: &[&'n str]) -> Option<&'n str> {
+    let up = word.to_uppercase();
+    names
+        .iter()
+        .map(|n| (distance(&up, &n.to_uppercase()), *n))
+        .filter(|(d, n)| *d <= (n.len() / 3).clamp(1, 3))
+        .min_by_key(|(d, _)| *d)
+        .map(|(_, n)| n)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn suggestions() {
+        assert_eq!(suggest("ZONNE", &["ZONE", "MODELE", "FORMULATION"]), Some("ZONE"));
+        assert_eq!(suggest("MODLE", &["ZONE", "MODELE"]), Some("MODELE"));
+        assert_eq!(suggest("XYZ", &["ZONE", "MODELE"]), None);
+    }
+}

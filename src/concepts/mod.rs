@@ -1,0 +1,142 @@
+//! Concepts: the typed results of commands.
+//!
+//! In Code_Aster every command result is a *concept* of a named type
+//! (`fonction_sdaster`, `table_sdaster`, `maillage_sdaster`, ...). The
+//! catalogue declares which types each keyword accepts and which type a
+//! command produces, so that a wrong type is reported at the call. The data
+//! behind a concept lives in the submodules; this module owns the kinds and
+//! the shared container.
+
+pub mod function;
+pub mod table;
+
+use std::cell::{Ref, RefCell, RefMut};
+use std::fmt;
+use std::rc::Rc;
+
+pub use function::{Function, Interp as Interpolation, Nappe, Prol};
+pub use table::{Cell, Table};
+
+/// The concept types, named as in Code_Aster's catalogue.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum ConceptKind {
+    Maillage,
+    Modele,
+    Mater,
+    ChamMater,
+    CharMeca,
+    CharContact,
+    Fonction,
+    FonctionC,
+    Nappe,
+    Formule,
+    Table,
+    TableContainer,
+    ListR8,
+    ListIs,
+    ListInst,
+    EvolElas,
+    EvolNoli,
+    FissXfem,
+    ChamNo,
+    ChamElem,
+    Carte,
+}
+
+impl ConceptKind {
+    /// The Code_Aster type name, as users see it in messages.
+    pub fn aster_name(self) -> &'static str {
+        use ConceptKind::*;
+        match self {
+            Maillage => "maillage_sdaster",
+            Modele => "modele_sdaster",
+            Mater => "mater_sdaster",
+            ChamMater => "cham_mater",
+            CharMeca => "char_meca",
+            CharContact => "char_contact",
+            Fonction => "fonction_sdaster",
+            FonctionC => "fonction_c",
+            Nappe => "nappe_sdaster",
+            Formule => "formule",
+            Table => "table_sdaster",
+            TableContainer => "table_container",
+            ListR8 => "listr8_sdaster",
+            ListIs => "listis_sdaster",
+            ListInst => "list_inst",
+            EvolElas => "evol_elas",
+            EvolNoli => "evol_noli",
+            FissXfem => "fiss_xfem",
+            ChamNo => "cham_no_sdaster",
+            ChamElem => "cham_elem",
+            Carte => "carte_sdaster",
+        }
+    }
+}
+
+impl fmt::Display for ConceptKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.aster_name())
+    }
+}
+
+/// The data a concept holds. `Pending` is what `aster check` produces: the
+/// type is known, the content was never computed.
+#[derive(Debug)]
+pub enum ConceptData {
+    Pending,
+    Function(Function),
+    Nappe(Nappe),
+    Formula(crate::interp::Formula),
+    Table(Table),
+    ListReal(Vec<f64>),
+    ListInt(Vec<i64>),
+}
+
+/// A command result: its type, the name it was given, and its data.
+#[derive(Debug)]
+pub struct Concept {
+    kind: ConceptKind,
+    name: RefCell<String>,
+    data: RefCell<ConceptData>,
+}
+
+pub type ConceptRef = Rc<Concept>;
+
+impl Concept {
+    pub fn new(kind: ConceptKind, data: ConceptData) -> ConceptRef {
+        Rc::new(Concept { kind, name: RefCell::new(String::new()), data: RefCell::new(data) })
+    }
+    pub fn kind(&self) -> ConceptKind {
+        self.kind
+    }
+    pub fn name(&self) -> String {
+        self.name.borrow().clone()
+    }
+    pub fn set_name(&self, name: &str) {
+        if self.name.borrow().is_empty() {
+            *self.name.borrow_mut() = name.to_string();
+        }
+    }
+    pub fn data(&self) -> Ref<'_, ConceptData> {
+        self.data.borrow()
+    }
+    pub fn data_mut(&self) -> RefMut<'_, ConceptData> {
+        self.data.borrow_mut()
+    }
+    /// `reuse=`: the concept keeps its identity and takes new content.
+    pub fn replace(&self, data: ConceptData) {
+        *self.data.borrow_mut() = data;
+    }
+    pub fn is_pending(&self) -> bool {
+        matches!(*self.data.borrow(), ConceptData::Pending)
+    }
+    /// A display name: the variable name, or the type when unnamed.
+    pub fn label(&self) -> String {
+        let n = self.name();
+        if n.is_empty() {
+            format!("<{}>", self.kind)
+        } else {
+            n
+        }
+    }
+}

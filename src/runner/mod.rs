@@ -1,0 +1,234 @@
+//! Running cases: a command file with its units, as `aster run`, `aster
+//! check` and `aster suite` do, with Code_Aster's diagnostics.
+
+pub mod export;
+pub mod session;
+pub mod suite;
+
+use crate::diag::{Error, ErrorKind};
+use crate::interp::Interp;
+use crate::stages::CheckRecord;
+use export::{Dir, Export};
+use session::{decode, diagnostic_for, write_atomic, Mode, Session, Timing, WorkDir};
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::rc::Rc;
+use std::time::Instant;
+
+/// Options of `aster run`.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Where the .mess and .resu files go (default: the current folder).
+    pub out_dir: Option<PathBuf>,
+    /// Extra or overriding units: (unit, path, direction).
+    pub units: Vec<(i64, PathBuf, Dir)>,
+    /// Echo the message file to stdout while running.
+    pub echo: bool,
+}
+
+/// The result of a run.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    pub name: String,
+    /// OK, NOOK_TEST_RESU, NO_TEST_RESU, <F>_ERROR, <F>_SYNTAX_ERROR.
+    pub diagnostic: String,
+    pub records: Vec<CheckRecord>,
+    /// The located error message, if the run stopped on one.
+    pub error: Option<String>,
+    pub mess: Option<PathBuf>,
+    pub seconds: f64,
+    pub timings: Vec<Timing>,
+}
+
+impl Outcome {
+    pub fn ok_count(&self) -> usize {
+        self.records.iter().filter(|r| r.ok == Some(true)).count()
+    }
+    pub fn nook_count(&self) -> usize {
+        self.records.iter().filter(|r| r.ok == Some(false)).count()
+    }
+    pub fn skip_count(&self) -> usize {
+        self.records.iter().filter(|r| r.ok.is_none()).count()
+    }
+    /// The process exit code: 0 for OK (and for a run without checks).
+    pub fn exit_code(&self) -> i32 {
+        match self.diagnostic.as_str() {
+            "OK" | "NO_TEST_RESU" => 0,
+            "NOOK_TEST_RESU" => 1,
+            _ => 2,
+        }
+    }
+    fn failed(name: &str, diagnostic: &str, error: String) -> Outcome {
+        Outcome {
+            name: name.into(),
+            diagnostic: diagnostic.into(),
+            records: Vec::new(),
+            error: Some(error),
+            mess: None,
+            seconds: 0.0,
+            timings: Vec::new(),
+        }
+    }
+}
+
+fn stem(p: &Path) -> String {
+    p.file_stem().and_then(|s| s.to_str()).unwrap_or("case").to_string()
+}
+
+/// Run the case described by an .export file.
+pub fn run_export(path: &Path, opts: &RunOptions) -> Outcome {
+    let name = stem(path);
+    let ex = match Export::read(path) {
+        Ok(e) => e,
+        Err(e) => return Outcome::failed(&name, "<F>_ERROR", e.msg),
+    };
+    let comms = ex.comm_files();
+    let comm = match comms.as_slice() {
+        [one] => one.path.clone(),
+        [] => return Outcome::failed(&name, "<F>_ERROR", format!("{}: no 'F comm FILE D 1' line", path.display())),
+        _ => {
+            return Outcome::failed(
+                &name,
+                "<F>_ERROR",
+                format!("{}: several command files (POURSUITE) are not supported yet", path.display()),
+            )
+        }
+    };
+    let mut units: Vec<(i64, PathBuf, Dir)> =
+        ex.files.iter().filter(|f| f.kind != "comm").map(|f| (f.unit, f.path.clone(), f.dir)).collect();
+    units.extend(opts.units.iter().cloned());
+    let mess = ex.files.iter().find(|f| f.kind == "mess").map(|f| f.path.clone());
+    run_file(&comm, &name, units, mess, ex.is_validation(), opts)
+}
+
+/// Run a command file with units given on the command line.
+pub fn run_comm(path: &Path, opts: &RunOptions) -> Outcome {
+    run_file(path, &stem(path), opts.units.clone(), None, false, opts)
+}
+
+fn run_file(
+    comm: &Path,
+    name: &str,
+    units: Vec<(i64, PathBuf, Dir)>,
+    mess_path: Option<PathBuf>,
+    validation: bool,
+    opts: &RunOptions,
+) -> Outcome {
+    let t0 = Instant::now();
+    let out_dir = opts.out_dir.clone().unwrap_or_else(|| PathBuf::from("."));
+    let mess_path = mess_path.unwrap_or_else(|| out_dir.join(format!("{name}.mess")));
+    let resu_path = mess_path.with_extension("resu");
+    let bytes = match std::fs::read(comm) {
+        Ok(b) => b,
+        Err(e) => return Outcome::failed(name, "<F>_ERROR", format!("{}: {e}", comm.display())),
+    };
+    // Input units must exist before anything runs.
+    for (u, p, d) in &units {
+        if *d != Dir::Out && !p.exists() {
+            return Outcome::failed(name, "<F>_ERROR", format!("unit {u}: data file {} does not exist", p.display()));
+        }
+    }
+    let work = match WorkDir::new() {
+        Ok(w) => w,
+        Err(e) => return Outcome::failed(name, "<F>_ERROR", e.msg),
+    };
+    let src = decode(&bytes);
+    let file = comm.file_name().and_then(|f| f.to_str()).unwrap_or("?").to_string();
+    let globals = Rc::new(RefCell::new(HashMap::new()));
+    let mut session = Session::new(Mode::Run, &file, &src, globals.clone(), work.0.clone());
+    session.units = units.into_iter().map(|(u, p, d)| (u, (p, d))).collect();
+    session.echo = opts.echo;
+    session.validation = validation;
+
+    let result = crate::syntax::parse_module(&src)
+        .map_err(|e| {
+            let mut err = Error::new(ErrorKind::Syntax, e.message);
+            err.span = Some(crate::syntax::ast::Span { start: e.offset, end: e.offset });
+            err
+        })
+        .and_then(|module| {
+            let mut it = Interp::new(globals.clone(), Some(&mut session));
+            it.run(&module)
+        });
+    let (diagnostic, error) = match &result {
+        Err(e) => {
+            let located = e.located(&file, &src);
+            session.mess.push_str(&format!("\n <F> {located}\n"));
+            if opts.echo {
+                println!("\n <F> {located}");
+            }
+            (diagnostic_for(e.kind).to_string(), Some(located))
+        }
+        Ok(()) => {
+            let d = if session.records.iter().any(|r| r.ok == Some(false)) {
+                "NOOK_TEST_RESU"
+            } else if session.records.iter().any(|r| r.ok == Some(true)) {
+                "OK"
+            } else {
+                "NO_TEST_RESU"
+            };
+            (d.to_string(), None)
+        }
+    };
+    // Results are delivered only from runs that did not stop on an error.
+    if error.is_none() {
+        for (from, to) in session.deliverables() {
+            if let Err(e) =
+                std::fs::read(&from).map_err(|e| e.to_string()).and_then(|b| write_atomic(&to, &b).map_err(|e| e.msg))
+            {
+                session.mess.push_str(&format!(" <A> result {} not delivered: {e}\n", to.display()));
+            }
+        }
+    }
+    let summary = format!(
+        "\n checks: {} OK, {} NOOK, {} skipped    elapsed {:.3} s\n DIAGNOSTIC JOB : {diagnostic}\n",
+        session.records.iter().filter(|r| r.ok == Some(true)).count(),
+        session.records.iter().filter(|r| r.ok == Some(false)).count(),
+        session.records.iter().filter(|r| r.ok.is_none()).count(),
+        t0.elapsed().as_secs_f64()
+    );
+    session.mess.push_str(&summary);
+    if opts.echo {
+        print!("{summary}");
+    }
+    let mut written = None;
+    if std::fs::create_dir_all(&out_dir).is_ok() && write_atomic(&mess_path, session.mess.as_bytes()).is_ok() {
+        written = Some(mess_path.clone());
+        if !session.resu.is_empty() {
+            let _ = write_atomic(&resu_path, session.resu.as_bytes());
+        }
+    }
+    Outcome {
+        name: name.to_string(),
+        diagnostic,
+        records: session.records.clone(),
+        error,
+        mess: written,
+        seconds: t0.elapsed().as_secs_f64(),
+        timings: session.timings.clone(),
+    }
+}
+
+/// `aster check`: parse and validate every command call, computing nothing.
+/// Returns the number of commands checked, or the located error.
+pub fn check_file(path: &Path) -> Result<usize, (String, ErrorKind)> {
+    let bytes = std::fs::read(path).map_err(|e| (format!("{}: {e}", path.display()), ErrorKind::Io))?;
+    let src = decode(&bytes);
+    let file = path.file_name().and_then(|f| f.to_str()).unwrap_or("?").to_string();
+    let module = crate::syntax::parse_module(&src).map_err(|e| {
+        let (l, c) = crate::syntax::lexer::line_col(&src, e.offset);
+        (format!("{file}:{l}:{c}: {}", e.message), ErrorKind::Syntax)
+    })?;
+    let globals = Rc::new(RefCell::new(HashMap::new()));
+    let work = std::env::temp_dir();
+    let mut session = Session::new(Mode::Check, &file, &src, globals.clone(), work);
+    let r = {
+        let mut it = Interp::new(globals, Some(&mut session));
+        it.run(&module)
+    };
+    match r {
+        Ok(()) => Ok(session.ncommands()),
+        Err(e) => Err((e.located(&file, &src), e.kind)),
+    }
+}

@@ -1,0 +1,341 @@
+//! One execution of a command file: the interpreter's host (command calls go
+//! through the catalogue to the stages) and the stages' I/O (units, message
+//! and result files, check records).
+
+use super::export::Dir;
+use crate::catalog::schema::Produces;
+use crate::catalog::{catalogue, validate};
+use crate::concepts::{Concept, ConceptData};
+use crate::diag::{Error, ErrorKind, Result};
+use crate::interp::{Host, KwArg, Scope, Value};
+use crate::stages::{self, CheckRecord, Ctx, StageIo};
+use crate::syntax::ast::Span;
+use std::collections::{BTreeMap, HashSet};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Mode {
+    /// Validate only: commands return typed placeholders.
+    Check,
+    Run,
+}
+
+/// Time spent in one command.
+#[derive(Debug, Clone)]
+pub struct Timing {
+    pub command: String,
+    pub line: usize,
+    pub seconds: f64,
+}
+
+pub struct Session {
+    pub mode: Mode,
+    pub file: String,
+    pub src: String,
+    pub globals: Scope,
+    /// Units given by the .export or --unit: path and direction.
+    pub units: BTreeMap<i64, (PathBuf, Dir)>,
+    /// Where units written during the run live until they are delivered.
+    pub workdir: PathBuf,
+    written: HashSet<i64>,
+    pub mess: String,
+    pub resu: String,
+    pub echo: bool,
+    pub records: Vec<CheckRecord>,
+    pub timings: Vec<Timing>,
+    pub validation: bool,
+    finished: bool,
+    ncommands: usize,
+}
+
+impl Session {
+    pub fn new(mode: Mode, file: &str, src: &str, globals: Scope, workdir: PathBuf) -> Session {
+        Session {
+            mode,
+            file: file.to_string(),
+            src: src.to_string(),
+            globals,
+            units: BTreeMap::new(),
+            workdir,
+            written: HashSet::new(),
+            mess: String::new(),
+            resu: String::new(),
+            echo: false,
+            records: Vec::new(),
+            timings: Vec::new(),
+            validation: false,
+            finished: false,
+            ncommands: 0,
+        }
+    }
+
+    fn line_of(&self, span: Span) -> usize {
+        crate::syntax::lexer::line_col(&self.src, span.start).0
+    }
+
+    fn say(&mut self, text: &str) {
+        self.mess.push_str(text);
+        if self.echo {
+            print!("{text}");
+            let _ = std::io::stdout().flush();
+        }
+    }
+
+    fn workfile(&self, unit: i64) -> PathBuf {
+        self.workdir.join(format!("fort.{unit}"))
+    }
+
+    /// Units written during the run that the .export asks to keep.
+    pub fn deliverables(&self) -> Vec<(PathBuf, PathBuf)> {
+        self.units
+            .iter()
+            .filter(|(u, (_, d))| *d != Dir::In && self.written.contains(u))
+            .map(|(u, (p, _))| (self.workfile(*u), p.clone()))
+            .collect()
+    }
+
+    fn run_command(
+        &mut self,
+        name: &'static str,
+        kwargs: Vec<KwArg>,
+        span: Span,
+        target: Option<&str>,
+    ) -> Result<Value> {
+        let cmd = catalogue().get(name).expect("host only calls catalogue commands");
+        let validated = validate::validate(cmd, kwargs, span)?;
+        let args = validated.args;
+        if let Some(reuse) = &validated.reuse {
+            // `CMD(reuse=X, ...)` alone modifies X in place; `Y = CMD(reuse=X, ...)` needs Y to be X.
+            let same = match target {
+                None => true,
+                Some(t) => self
+                    .globals
+                    .borrow()
+                    .get(t)
+                    .map(|v| matches!(v, Value::Concept(c) if std::rc::Rc::ptr_eq(c, reuse)))
+                    .unwrap_or(false),
+            };
+            if !same {
+                return Err(Error::catalog(format!(
+                    "reuse={} must name the concept the result is assigned to ({} = {name}(reuse={}, ...))",
+                    reuse.label(),
+                    reuse.label(),
+                    reuse.label()
+                ))
+                .at(span)
+                .in_command(name));
+            }
+        }
+        let kind = match &cmd.produces {
+            Produces::Nothing => None,
+            Produces::Fixed(k) => Some(*k),
+            Produces::Dynamic(f) => Some(f(&args).map_err(|e| e.at(span).in_command(name))?),
+        };
+        if let (Some(r), Some(k)) = (&validated.reuse, kind) {
+            if r.kind() != k {
+                return Err(Error::catalog(format!("reuse={} is a {}, {name} produces a {k}", r.label(), r.kind()))
+                    .at(span)
+                    .in_command(name));
+            }
+        }
+        if name == "FIN" {
+            self.finished = true;
+        }
+        if self.mode == Mode::Check {
+            return Ok(match kind {
+                Some(k) => match &validated.reuse {
+                    Some(r) => Value::Concept(r.clone()),
+                    None => Value::Concept(Concept::new(k, ConceptData::Pending)),
+                },
+                None => Value::None,
+            });
+        }
+        let Some(stage) = stages::stage(name) else {
+            return Err(Error::unsupported(format!("{name} is not supported yet")).at(span));
+        };
+        let line = self.line_of(span);
+        let globals = self.globals.clone();
+        let mut ctx = Ctx { io: self, globals, command: name, line };
+        let data = stage(&mut ctx, &args).map_err(|e| e.at(span).in_command(name))?;
+        match (kind, data) {
+            (Some(k), Some(d)) => Ok(match &validated.reuse {
+                Some(r) => {
+                    r.replace(d);
+                    Value::Concept(r.clone())
+                }
+                None => Value::Concept(Concept::new(k, d)),
+            }),
+            (None, _) => Ok(Value::None),
+            (Some(k), None) => Err(Error::runtime(format!("internal error: {name} produced no {k}")).at(span)),
+        }
+    }
+}
+
+impl Host for Session {
+    fn call_command(
+        &mut self,
+        name: &'static str,
+        kwargs: Vec<KwArg>,
+        span: Span,
+        target: Option<&str>,
+    ) -> Result<Value> {
+        self.ncommands += 1;
+        let line = self.line_of(span);
+        let n = self.ncommands;
+        if self.mode == Mode::Run {
+            let text: String = self.src.get(span.start..span.end).unwrap_or(name).to_string();
+            let shown = match target {
+                Some(t) => format!("{t} = {text}"),
+                None => text,
+            };
+            let bar = "  # ".to_string() + &"-".repeat(86);
+            self.say(&format!(
+                "\n{bar}\n  # Command #{n:04}  {name}  ({}:{line})\n{bar}\n{}\n\n",
+                self.file,
+                shown.lines().map(|l| format!("  {l}")).collect::<Vec<_>>().join("\n")
+            ));
+        }
+        let t0 = Instant::now();
+        let r = self.run_command(name, kwargs, span, target);
+        let dt = t0.elapsed().as_secs_f64();
+        if self.mode == Mode::Run {
+            self.timings.push(Timing { command: name.to_string(), line, seconds: dt });
+            if r.is_ok() {
+                self.say(&format!("  # End of command #{n:04} {name}  elapsed {dt:.3} s\n"));
+            }
+        }
+        r
+    }
+
+    fn print(&mut self, text: &str) {
+        self.say(text);
+    }
+
+    fn finished(&self) -> bool {
+        self.finished
+    }
+
+    fn command(&self, name: &str) -> Option<&'static str> {
+        catalogue().get(name).map(|c| c.name)
+    }
+}
+
+impl StageIo for Session {
+    fn mess(&mut self, text: &str) {
+        self.say(text);
+    }
+
+    fn resu(&mut self, text: &str) {
+        self.resu.push_str(text);
+        self.say(text);
+    }
+
+    fn read_unit(&mut self, unit: i64) -> Result<String> {
+        let path = if self.written.contains(&unit) {
+            self.workfile(unit)
+        } else {
+            match self.units.get(&unit) {
+                Some((p, _)) => p.clone(),
+                None => {
+                    return Err(Error::io(format!(
+                        "unit {unit} is not assigned to a file: add 'F libr FILE D {unit}' to the .export or --unit {unit}=FILE"
+                    )))
+                }
+            }
+        };
+        let bytes =
+            std::fs::read(&path).map_err(|e| Error::io(format!("unit {unit}: cannot read {}: {e}", path.display())))?;
+        Ok(decode(&bytes))
+    }
+
+    fn write_unit(&mut self, unit: i64, text: &str) -> Result<()> {
+        match unit {
+            6 => {
+                self.say(text);
+                return Ok(());
+            }
+            8 => {
+                self.resu(text);
+                return Ok(());
+            }
+            _ => {}
+        }
+        let path = self.workfile(unit);
+        let first = self.written.insert(unit);
+        let mut f = std::fs::OpenOptions::new()
+            .create(true)
+            .write(true)
+            .append(!first)
+            .truncate(first)
+            .open(&path)
+            .map_err(|e| Error::io(format!("unit {unit}: cannot write {}: {e}", path.display())))?;
+        f.write_all(text.as_bytes()).map_err(|e| Error::io(format!("unit {unit}: {e}")))?;
+        Ok(())
+    }
+
+    fn record(&mut self, rec: CheckRecord) {
+        self.records.push(rec);
+    }
+
+    fn is_validation(&self) -> bool {
+        self.validation
+    }
+}
+
+/// Text of a file: UTF-8, else Latin-1 (old command files).
+pub fn decode(bytes: &[u8]) -> String {
+    match std::str::from_utf8(bytes) {
+        Ok(s) => s.strip_prefix('\u{feff}').unwrap_or(s).to_string(),
+        Err(_) => bytes.iter().map(|&b| b as char).collect(),
+    }
+}
+
+/// A scratch folder for one run, removed when dropped.
+pub struct WorkDir(pub PathBuf);
+
+impl WorkDir {
+    pub fn new() -> Result<WorkDir> {
+        static COUNTER: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+        let n = COUNTER.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+        let p = std::env::temp_dir().join(format!("aster-rs-{}-{n}", std::process::id()));
+        std::fs::create_dir_all(&p).map_err(|e| Error::io(format!("cannot create {}: {e}", p.display())))?;
+        Ok(WorkDir(p))
+    }
+}
+
+impl Drop for WorkDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// Write a file atomically: a temporary beside it, then a rename.
+pub fn write_atomic(path: &Path, data: &[u8]) -> Result<()> {
+    let tmp = path.with_extension(format!(
+        "{}.tmp{}",
+        path.extension().and_then(|e| e.to_str()).unwrap_or(""),
+        std::process::id()
+    ));
+    std::fs::write(&tmp, data).map_err(|e| Error::io(format!("cannot write {}: {e}", tmp.display())))?;
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        Error::io(format!("cannot write {}: {e}", path.display()))
+    })
+}
+
+/// Errors worth naming the diagnostic after.
+pub fn diagnostic_for(kind: ErrorKind) -> &'static str {
+    match kind {
+        ErrorKind::Syntax | ErrorKind::Catalog => "<F>_SYNTAX_ERROR",
+        _ => "<F>_ERROR",
+    }
+}
+
+impl Session {
+    /// How many command calls were made.
+    pub fn ncommands(&self) -> usize {
+        self.ncommands
+    }
+}

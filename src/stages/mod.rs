@@ -1,0 +1,85 @@
+//! Stages: what each command does once its keywords are validated.
+//!
+//! A stage receives validated [`Args`] and a [`Ctx`] through which it reads
+//! and writes logical units, writes to the message file and records check
+//! verdicts. Stages never see the AST nor the file system layout.
+
+pub mod control;
+pub mod functions;
+pub mod table_io;
+pub mod tables;
+pub mod tests;
+pub mod verdict;
+
+use crate::catalog::args::Args;
+use crate::concepts::ConceptData;
+use crate::diag::Result;
+use crate::interp::Scope;
+
+/// One printed check line, for the run summary and the conformance table.
+#[derive(Debug, Clone)]
+pub struct CheckRecord {
+    pub command: String,
+    /// 1-based line of the command in the command file.
+    pub line: usize,
+    /// NON_REGRESSION, ANALYTIQUE, ...
+    pub reference: String,
+    pub legend: String,
+    /// None for a skipped check.
+    pub ok: Option<bool>,
+}
+
+/// What a stage may do beyond computing its result.
+pub trait StageIo {
+    /// Append to the message file (and the console).
+    fn mess(&mut self, text: &str);
+    /// Append to the result file (unit 8); also shown in the message file.
+    fn resu(&mut self, text: &str);
+    /// Read the whole content of a logical unit.
+    fn read_unit(&mut self, unit: i64) -> Result<String>;
+    /// Write to a logical unit: the first write of a run replaces, later ones append.
+    fn write_unit(&mut self, unit: i64, text: &str) -> Result<()>;
+    /// Record a check verdict.
+    fn record(&mut self, rec: CheckRecord);
+    /// Is this a validation test case (NON_REGRESSION checks are then not enforced)?
+    fn is_validation(&self) -> bool {
+        false
+    }
+}
+
+/// The stage's context for one command.
+pub struct Ctx<'a> {
+    pub io: &'a mut dyn StageIo,
+    /// The globals of the command file (FORMULE evaluates in them).
+    pub globals: Scope,
+    /// The command's name and its line, for records.
+    pub command: &'static str,
+    pub line: usize,
+}
+
+pub type StageFn = fn(&mut Ctx, &Args) -> Result<Option<ConceptData>>;
+
+/// The stage of a command, if it has one.
+pub fn stage(name: &str) -> Option<StageFn> {
+    Some(match name {
+        "DEBUT" | "FIN" => control::nothing,
+        "DEFI_CONSTANTE" => functions::defi_constante,
+        "DEFI_FONCTION" => functions::defi_fonction,
+        "DEFI_NAPPE" => functions::defi_nappe,
+        "DEFI_LIST_REEL" => functions::defi_list_reel,
+        "DEFI_LIST_ENTI" => functions::defi_list_enti,
+        "FORMULE" => functions::formule,
+        "CALC_FONCTION" => functions::calc_fonction,
+        "CALC_FONC_INTERP" => functions::calc_fonc_interp,
+        "IMPR_FONCTION" => functions::impr_fonction,
+        "LIRE_FONCTION" => functions::lire_fonction,
+        "RECU_FONCTION" => functions::recu_fonction,
+        "CREA_TABLE" => tables::crea_table,
+        "LIRE_TABLE" => tables::lire_table,
+        "CALC_TABLE" => tables::calc_table,
+        "IMPR_TABLE" => tables::impr_table,
+        "TEST_TABLE" => tests::test_table,
+        "TEST_FONCTION" => tests::test_fonction,
+        _ => return None,
+    })
+}
