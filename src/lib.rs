@@ -6,6 +6,7 @@ pub mod catalog;
 pub mod concepts;
 pub mod diag;
 pub mod interp;
+pub mod mesh;
 pub mod runner;
 pub mod stages;
 pub mod syntax;

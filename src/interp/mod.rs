@@ -41,6 +41,12 @@ pub trait Host {
     fn finished(&self) -> bool;
     /// Is `name` a command of the catalogue?
     fn command(&self, name: &str) -> Option<&'static str>;
+    /// The closest command name, for "did you mean" hints.
+    fn suggest_command(&self, name: &str) -> Option<&'static str>;
+}
+
+fn looks_like_command(n: &str) -> bool {
+    n.len() > 2 && n.chars().all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_') && n.contains('_')
 }
 
 /// A FORMULE: an expression over named parameters, evaluated in the context
@@ -346,15 +352,7 @@ impl<'h> Interp<'h> {
         if let Some(b) = builtins::lookup_builtin(name) {
             return Ok(b);
         }
-        let hint = if name.chars().all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
-            && name.len() > 3
-            && self.host.is_some()
-        {
-            " (not a variable, and not a command known to the catalogue)"
-        } else {
-            ""
-        };
-        Err(Error::python(format!("NameError: name '{name}' is not defined{hint}")).at(span))
+        Err(Error::python(format!("NameError: name '{name}' is not defined")).at(span))
     }
 
     fn assign(&mut self, target: &Expr, v: Value) -> Result<()> {
@@ -606,7 +604,20 @@ impl<'h> Interp<'h> {
     }
 
     fn eval_call(&mut self, f: &Expr, args: &[Arg], span: Span, target: Option<&str>) -> Result<Value> {
-        let fv = self.eval(f)?;
+        let fv = match (&f.kind, self.eval(f)) {
+            // Calling an undefined upper-case name: most likely a mistyped command.
+            (ExprKind::Name(n), Err(e)) if looks_like_command(n) && self.host.is_some() => {
+                let hint = self
+                    .host
+                    .as_ref()
+                    .and_then(|h| h.suggest_command(n))
+                    .map(|s| format!(" (did you mean '{s}'?)"))
+                    .unwrap_or_default();
+                let _ = e;
+                return Err(Error::catalog(format!("unknown command '{n}'{hint}")).at(f.span));
+            }
+            (_, r) => r?,
+        };
         let mut pos = Vec::new();
         let mut kw: Vec<KwArg> = Vec::new();
         for a in args {

@@ -220,6 +220,10 @@ impl Host for Session {
     fn command(&self, name: &str) -> Option<&'static str> {
         catalogue().get(name).map(|c| c.name)
     }
+
+    fn suggest_command(&self, name: &str) -> Option<&'static str> {
+        validate::suggest(name, &catalogue().names())
+    }
 }
 
 impl StageIo for Session {

@@ -51,6 +51,68 @@ pub fn logical_lines(src: &str) -> String {
     String::from_utf8(out).expect("logical_lines keeps UTF-8 intact")
 }
 
+/// The offset of the first bracket nested deeper than `limit`, if any. The
+/// parser and the interpreter recurse on nesting, so it is bounded, as in Python.
+pub fn too_deep(src: &str, limit: usize) -> Option<usize> {
+    let bytes = src.as_bytes();
+    let mut depth = 0usize;
+    let mut i = 0;
+    while i < bytes.len() {
+        match bytes[i] {
+            b'#' => {
+                while i < bytes.len() && bytes[i] != b'\n' {
+                    i += 1;
+                }
+                continue;
+            }
+            b'\'' | b'"' => {
+                i = skip_string(bytes, i);
+                continue;
+            }
+            b'(' | b'[' | b'{' => {
+                depth += 1;
+                if depth > limit {
+                    return Some(i);
+                }
+            }
+            b')' | b']' | b'}' => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        i += 1;
+    }
+    None
+}
+
+/// The offset of the innermost bracket opened before `upto` and not closed
+/// by then (strings and comments skipped), if any.
+pub fn unclosed_bracket(src: &str, upto: usize) -> Option<usize> {
+    let bytes = src.as_bytes();
+    let upto = upto.min(bytes.len());
+    let mut stack = Vec::new();
+    let mut i = 0;
+    while i < upto {
+        match bytes[i] {
+            b'#' => {
+                while i < upto && bytes[i] != b'\n' {
+                    i += 1;
+                }
+                continue;
+            }
+            b'\'' | b'"' => {
+                i = skip_string(bytes, i);
+                continue;
+            }
+            b'(' | b'[' | b'{' => stack.push(i),
+            b')' | b']' | b'}' => {
+                stack.pop();
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    stack.pop()
+}
+
 /// Index just past the string literal starting at `start` (a quote), or the end
 /// of the line / text when it is unterminated (the grammar reports it then).
 fn skip_string(bytes: &[u8], start: usize) -> usize {

@@ -23,10 +23,16 @@ fn err<T>(offset: usize, message: impl Into<String>) -> PResult<T> {
     Err(SyntaxError { offset, message: message.into() })
 }
 
+/// Brackets nested deeper than this are refused (Python's own limit is 200).
+pub const MAX_NESTING: usize = 100;
+
 /// Parse a whole command file.
 pub fn parse_module(src: &str) -> PResult<Module> {
+    if let Some(at) = super::lexer::too_deep(src, MAX_NESTING) {
+        return err(at, format!("invalid syntax: brackets nested more than {MAX_NESTING} deep"));
+    }
     let text = logical_lines(src);
-    let mut pairs = CommParser::parse(Rule::file, &text).map_err(|e| from_pest(&text, e))?;
+    let mut pairs = CommParser::parse(Rule::file, &text).map_err(|e| from_pest(src, &text, e))?;
     let file = pairs.next().unwrap();
     let mut body = Vec::new();
     for p in file.into_inner() {
@@ -41,9 +47,12 @@ pub fn parse_module(src: &str) -> PResult<Module> {
 /// Parse a standalone expression (FORMULE bodies, f-string fields). `base` is
 /// added to every span so that errors point into the enclosing file.
 pub fn parse_expr(src: &str, base: usize) -> PResult<Expr> {
+    if let Some(at) = super::lexer::too_deep(src, MAX_NESTING) {
+        return err(base + at, format!("invalid syntax: brackets nested more than {MAX_NESTING} deep"));
+    }
     let text = logical_lines(src);
     let mut pairs = CommParser::parse(Rule::expr_only, &text).map_err(|e| {
-        let mut e = from_pest(&text, e);
+        let mut e = from_pest(src, &text, e);
         e.offset += base;
         e
     })?;
@@ -63,11 +72,23 @@ fn shift(e: &mut Expr, base: usize) {
     e.span.end += base;
 }
 
-fn from_pest(text: &str, e: pest::error::Error<Rule>) -> SyntaxError {
+fn from_pest(src: &str, text: &str, e: pest::error::Error<Rule>) -> SyntaxError {
     let offset = match e.location {
         pest::error::InputLocation::Pos(p) => p,
         pest::error::InputLocation::Span((s, _)) => s,
     };
+    // A bracket left open joins the following lines into one: point at it.
+    if let Some(open) = super::lexer::unclosed_bracket(text, offset) {
+        let (l, c) = super::lexer::line_col(src, offset);
+        let (lo, _) = super::lexer::line_col(src, open);
+        if l > lo {
+            let ch = &text[open..open + 1];
+            return SyntaxError {
+                offset: open,
+                message: format!("invalid syntax: '{ch}' is never closed (the error shows at line {l}, column {c})"),
+            };
+        }
+    }
     let message = describe(text, offset, &e.variant);
     SyntaxError { offset, message }
 }
@@ -329,9 +350,9 @@ fn expr_stmt(p: Pair<Rule>) -> PResult<StmtKind> {
     if parts.len() == 1 {
         return Ok(StmtKind::Expr(testlist(parts.into_iter().next().unwrap())?));
     }
-    if parts.len() == 3 && parts[1].as_rule() == Rule::augop {
+    if parts[1].as_rule() == Rule::augop {
         let mut it = parts.into_iter();
-        let target = target_list(it.next().unwrap())?;
+        let target = assignable(testlist(it.next().unwrap())?)?;
         let op = match it.next().unwrap().as_str() {
             "+=" => BinOp::Add,
             "-=" => BinOp::Sub,
@@ -342,20 +363,37 @@ fn expr_stmt(p: Pair<Rule>) -> PResult<StmtKind> {
             "**=" => BinOp::Pow,
             o => unreachable!("{o}"),
         };
+        if matches!(target.kind, ExprKind::Tuple(_) | ExprKind::List(_)) {
+            return err(target.span.start, "invalid syntax: illegal expression for augmented assignment");
+        }
         let value = testlist(it.next().unwrap())?;
         return Ok(StmtKind::AugAssign { target, op, value });
     }
-    let n = parts.len();
-    let mut targets = Vec::new();
-    let mut value = None;
-    for (i, part) in parts.into_iter().enumerate() {
-        if i + 1 == n {
-            value = Some(testlist(part)?);
-        } else {
-            targets.push(target_list(part)?);
+    let mut exprs = Vec::new();
+    for part in parts {
+        if part.as_rule() == Rule::testlist {
+            exprs.push(testlist(part)?);
         }
     }
-    Ok(StmtKind::Assign { targets, value: value.unwrap() })
+    let value = exprs.pop().unwrap();
+    let targets = exprs.into_iter().map(assignable).collect::<PResult<Vec<_>>>()?;
+    Ok(StmtKind::Assign { targets, value })
+}
+
+/// Check that an expression parsed on the left of `=` can be assigned to.
+fn assignable(e: Expr) -> PResult<Expr> {
+    match e.kind {
+        ExprKind::Name(_) | ExprKind::Subscript(..) | ExprKind::Attr(..) => Ok(e),
+        ExprKind::Tuple(items) | ExprKind::List(items) => {
+            let items = items.into_iter().map(assignable).collect::<PResult<Vec<_>>>()?;
+            Ok(Expr::new(ExprKind::Tuple(items), e.span))
+        }
+        ExprKind::Call(..) => err(e.span.start, "invalid syntax: cannot assign to function call"),
+        ExprKind::Int(_) | ExprKind::Float(_) | ExprKind::Str(_) | ExprKind::None | ExprKind::Bool(_) => {
+            err(e.span.start, "invalid syntax: cannot assign to literal")
+        }
+        _ => err(e.span.start, "invalid syntax: cannot assign to expression"),
+    }
 }
 
 fn has_trailing_comma(p: &Pair<Rule>) -> bool {
@@ -626,28 +664,22 @@ fn postfix(p: Pair<Rule>) -> PResult<Expr> {
 }
 
 fn subscript_item(p: Pair<Rule>) -> PResult<Expr> {
-    let inner = p.into_inner().next().unwrap();
-    match inner.as_rule() {
-        Rule::test => test(inner),
-        Rule::slice => {
-            let sp = span(&inner);
-            // Rebuild the three optional parts from the separators.
-            let text_start = sp.start;
-            let mut parts: [Option<Box<Expr>>; 3] = [None, None, None];
-            let mut slot = 0;
-            let raw = inner.as_str().to_string();
-            let mut last_end = text_start;
-            for c in inner.into_inner() {
-                let csp = span(&c);
-                slot += raw[last_end - text_start..csp.start - text_start].matches(':').count();
-                parts[slot.min(2)] = Some(Box::new(test(c)?));
-                last_end = csp.end;
-            }
-            let [a, b, c] = parts;
-            Ok(Expr::new(ExprKind::Slice(a, b, c), sp))
-        }
-        r => unreachable!("{r:?}"),
+    let sp = span(&p);
+    let children: Vec<Pair<Rule>> = p.into_inner().collect();
+    if children.len() == 1 && children[0].as_rule() == Rule::test {
+        return test(children.into_iter().next().unwrap());
     }
+    // A slice: tests fill the slots between colons.
+    let mut parts: [Option<Box<Expr>>; 3] = [None, None, None];
+    let mut slot = 0;
+    for c in children {
+        match c.as_rule() {
+            Rule::colon => slot += 1,
+            _ => parts[slot.min(2)] = Some(Box::new(test(c)?)),
+        }
+    }
+    let [a, b, c] = parts;
+    Ok(Expr::new(ExprKind::Slice(a, b, c), sp))
 }
 
 fn arglist(p: Pair<Rule>) -> PResult<Vec<Arg>> {
@@ -726,59 +758,79 @@ fn atom(p: Pair<Rule>) -> PResult<Expr> {
         Rule::kw_true => ExprKind::Bool(true),
         Rule::kw_false => ExprKind::Bool(false),
         Rule::ident => ExprKind::Name(ident(inner)),
-        Rule::paren => {
-            let parts: Vec<Pair<Rule>> = inner.into_inner().collect();
-            match parts.len() {
-                0 => ExprKind::Tuple(Vec::new()),
-                1 => {
-                    let tl = parts.into_iter().next().unwrap();
-                    let mut e = testlist(tl)?;
-                    e.span = sp;
-                    return Ok(e);
-                }
-                _ => {
-                    let mut it = parts.into_iter();
-                    let e = test(it.next().unwrap())?;
-                    ExprKind::GenExp(Box::new(e), comp_for(it.next().unwrap())?)
-                }
-            }
-        }
-        Rule::list_display => {
-            let parts: Vec<Pair<Rule>> = inner.into_inner().collect();
-            match parts.len() {
-                0 => ExprKind::List(Vec::new()),
-                1 => match testlist(parts.into_iter().next().unwrap())? {
-                    Expr { kind: ExprKind::Tuple(items), .. } => ExprKind::List(items),
-                    e => ExprKind::List(vec![e]),
-                },
-                _ => {
-                    let mut it = parts.into_iter();
-                    let e = test(it.next().unwrap())?;
-                    ExprKind::ListComp(Box::new(e), comp_for(it.next().unwrap())?)
-                }
-            }
-        }
-        Rule::dict_display => {
-            let parts: Vec<Pair<Rule>> = inner.into_inner().collect();
-            match parts.len() {
-                0 => ExprKind::Dict(Vec::new()),
-                1 => {
-                    let mut items = Vec::new();
-                    for it in parts.into_iter().next().unwrap().into_inner() {
-                        items.push(dict_item(it)?);
+        Rule::paren => match inner.into_inner().next() {
+            None => ExprKind::Tuple(Vec::new()),
+            Some(body) => {
+                let (first, rest) = seq_body(body)?;
+                match rest {
+                    SeqRest::Comp(c) => ExprKind::GenExp(Box::new(first), c),
+                    SeqRest::Items(items, false) if items.is_empty() => {
+                        // A parenthesized expression: keep its own kind, with the parens' span.
+                        let mut e = first;
+                        e.span = sp;
+                        return Ok(e);
                     }
-                    ExprKind::Dict(items)
-                }
-                _ => {
-                    let mut it = parts.into_iter();
-                    let (k, v) = dict_item(it.next().unwrap())?;
-                    ExprKind::DictComp(Box::new(k), Box::new(v), comp_for(it.next().unwrap())?)
+                    SeqRest::Items(mut items, _) => {
+                        items.insert(0, first);
+                        ExprKind::Tuple(items)
+                    }
                 }
             }
-        }
+        },
+        Rule::list_display => match inner.into_inner().next() {
+            None => ExprKind::List(Vec::new()),
+            Some(body) => {
+                let (first, rest) = seq_body(body)?;
+                match rest {
+                    SeqRest::Comp(c) => ExprKind::ListComp(Box::new(first), c),
+                    SeqRest::Items(mut items, _) => {
+                        items.insert(0, first);
+                        ExprKind::List(items)
+                    }
+                }
+            }
+        },
+        Rule::dict_display => match inner.into_inner().next() {
+            None => ExprKind::Dict(Vec::new()),
+            Some(body) => {
+                let mut bi = body.into_inner();
+                let (k, v) = dict_item(bi.next().unwrap())?;
+                let rest = bi.next().unwrap();
+                match rest.as_rule() {
+                    Rule::comp_for => ExprKind::DictComp(Box::new(k), Box::new(v), comp_for(rest)?),
+                    _ => {
+                        let mut items = vec![(k, v)];
+                        for it in rest.into_inner() {
+                            items.push(dict_item(it)?);
+                        }
+                        ExprKind::Dict(items)
+                    }
+                }
+            }
+        },
         r => unreachable!("{r:?}"),
     };
     Ok(Expr::new(kind, sp))
+}
+
+enum SeqRest {
+    Comp(Vec<Comprehension>),
+    /// More items; true when a comma was written (so `(x,)` is a tuple).
+    Items(Vec<Expr>, bool),
+}
+
+fn seq_body(p: Pair<Rule>) -> PResult<(Expr, SeqRest)> {
+    let mut it = p.into_inner();
+    let first = test(it.next().unwrap())?;
+    let rest = it.next().unwrap();
+    Ok(match rest.as_rule() {
+        Rule::comp_for => (first, SeqRest::Comp(comp_for(rest)?)),
+        _ => {
+            let comma = rest.as_str().contains(',');
+            let items = rest.into_inner().map(test).collect::<PResult<Vec<_>>>()?;
+            (first, SeqRest::Items(items, comma))
+        }
+    })
 }
 
 fn dict_item(p: Pair<Rule>) -> PResult<(Expr, Expr)> {

@@ -1,0 +1,184 @@
+//! Meshes: nodes, cells and groups, in Code_Aster's numbering and node order.
+//!
+//! Cells are stored with their nodes in Code_Aster's local order; converting
+//! from and to other orders (MED) is the job of the format layer alone.
+
+use std::collections::BTreeMap;
+
+/// Cell types, named as in Code_Aster.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum CellType {
+    Poi1,
+    Seg2,
+    Seg3,
+    Tria3,
+    Tria6,
+    Quad4,
+    Quad8,
+    Quad9,
+    Tetra4,
+    Tetra10,
+    Penta6,
+    Penta15,
+    Pyram5,
+    Pyram13,
+    Hexa8,
+    Hexa20,
+    Hexa27,
+}
+
+impl CellType {
+    pub const ALL: [CellType; 17] = [
+        CellType::Poi1,
+        CellType::Seg2,
+        CellType::Seg3,
+        CellType::Tria3,
+        CellType::Tria6,
+        CellType::Quad4,
+        CellType::Quad8,
+        CellType::Quad9,
+        CellType::Tetra4,
+        CellType::Tetra10,
+        CellType::Penta6,
+        CellType::Penta15,
+        CellType::Pyram5,
+        CellType::Pyram13,
+        CellType::Hexa8,
+        CellType::Hexa20,
+        CellType::Hexa27,
+    ];
+
+    pub fn name(self) -> &'static str {
+        use CellType::*;
+        match self {
+            Poi1 => "POI1",
+            Seg2 => "SEG2",
+            Seg3 => "SEG3",
+            Tria3 => "TRIA3",
+            Tria6 => "TRIA6",
+            Quad4 => "QUAD4",
+            Quad8 => "QUAD8",
+            Quad9 => "QUAD9",
+            Tetra4 => "TETRA4",
+            Tetra10 => "TETRA10",
+            Penta6 => "PENTA6",
+            Penta15 => "PENTA15",
+            Pyram5 => "PYRAM5",
+            Pyram13 => "PYRAM13",
+            Hexa8 => "HEXA8",
+            Hexa20 => "HEXA20",
+            Hexa27 => "HEXA27",
+        }
+    }
+
+    pub fn from_name(s: &str) -> Option<CellType> {
+        CellType::ALL.iter().copied().find(|t| t.name() == s)
+    }
+
+    pub fn nnodes(self) -> usize {
+        use CellType::*;
+        match self {
+            Poi1 => 1,
+            Seg2 => 2,
+            Seg3 => 3,
+            Tria3 => 3,
+            Tria6 => 6,
+            Quad4 => 4,
+            Quad8 => 8,
+            Quad9 => 9,
+            Tetra4 => 4,
+            Tetra10 => 10,
+            Penta6 => 6,
+            Penta15 => 15,
+            Pyram5 => 5,
+            Pyram13 => 13,
+            Hexa8 => 8,
+            Hexa20 => 20,
+            Hexa27 => 27,
+        }
+    }
+
+    /// Topological dimension.
+    pub fn dim(self) -> usize {
+        use CellType::*;
+        match self {
+            Poi1 => 0,
+            Seg2 | Seg3 => 1,
+            Tria3 | Tria6 | Quad4 | Quad8 | Quad9 => 2,
+            _ => 3,
+        }
+    }
+
+    /// Number of vertices (corner nodes, listed first in every order used here).
+    pub fn nvertices(self) -> usize {
+        use CellType::*;
+        match self {
+            Poi1 => 1,
+            Seg2 | Seg3 => 2,
+            Tria3 | Tria6 => 3,
+            Quad4 | Quad8 | Quad9 => 4,
+            Tetra4 | Tetra10 => 4,
+            Penta6 | Penta15 => 6,
+            Pyram5 | Pyram13 => 5,
+            Hexa8 | Hexa20 | Hexa27 => 8,
+        }
+    }
+}
+
+/// A mesh. Nodes and cells are numbered from 0 in storage; their names
+/// (N1, M1, ...) are what users see.
+#[derive(Debug, Clone, Default)]
+pub struct Mesh {
+    /// Space dimension (2 or 3).
+    pub dim: usize,
+    pub coords: Vec<[f64; 3]>,
+    pub node_names: Vec<String>,
+    pub cell_types: Vec<CellType>,
+    /// Connectivity in Code_Aster's local node order (0-based node indices).
+    pub cells: Vec<Vec<usize>>,
+    pub cell_names: Vec<String>,
+    pub node_groups: BTreeMap<String, Vec<usize>>,
+    pub cell_groups: BTreeMap<String, Vec<usize>>,
+}
+
+impl Mesh {
+    pub fn nnodes(&self) -> usize {
+        self.coords.len()
+    }
+
+    pub fn ncells(&self) -> usize {
+        self.cells.len()
+    }
+
+    /// Number of cells of each type present.
+    pub fn cell_type_counts(&self) -> BTreeMap<CellType, usize> {
+        let mut m = BTreeMap::new();
+        for t in &self.cell_types {
+            *m.entry(*t).or_insert(0) += 1;
+        }
+        m
+    }
+
+    /// `(min, max)` corners of the node coordinates, `None` without nodes.
+    pub fn bounding_box(&self) -> Option<([f64; 3], [f64; 3])> {
+        let first = *self.coords.first()?;
+        let (mut lo, mut hi) = (first, first);
+        for c in &self.coords {
+            for k in 0..3 {
+                lo[k] = lo[k].min(c[k]);
+                hi[k] = hi[k].max(c[k]);
+            }
+        }
+        Some((lo, hi))
+    }
+
+    /// Sizes of the node groups.
+    pub fn node_group_sizes(&self) -> BTreeMap<String, usize> {
+        self.node_groups.iter().map(|(k, v)| (k.clone(), v.len())).collect()
+    }
+
+    /// Sizes of the cell groups.
+    pub fn cell_group_sizes(&self) -> BTreeMap<String, usize> {
+        self.cell_groups.iter().map(|(k, v)| (k.clone(), v.len())).collect()
+    }
+}
