@@ -5,6 +5,7 @@
 pub mod catalog;
 pub mod concepts;
 pub mod diag;
+pub mod fem;
 pub mod interp;
 pub mod mesh;
 pub mod runner;

@@ -16,9 +16,10 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Cmd {
-    /// Run a case: CASE.export, or CASE.comm with --unit mappings.
+    /// Run a case: CASE.export, or CASE.comm with --unit mappings; with no case,
+    /// the embedded demo scene (comm/hardening_curve.comm).
     Run {
-        case: PathBuf,
+        case: Option<PathBuf>,
         /// Map a logical unit to a file: N=PATH (read if it exists, else written).
         #[arg(long = "unit", value_name = "N=PATH")]
         units: Vec<String>,
@@ -78,8 +79,11 @@ fn main() -> ExitCode {
                 }
             };
             let opts = RunOptions { out_dir: out, units, echo: !quiet };
-            let is_export = case.extension().map(|e| e == "export").unwrap_or(false);
-            let outcome = if is_export { runner::run_export(&case, &opts) } else { runner::run_comm(&case, &opts) };
+            let outcome = match &case {
+                None => runner::run_default(&opts),
+                Some(c) if c.extension().map(|e| e == "export").unwrap_or(false) => runner::run_export(c, &opts),
+                Some(c) => runner::run_comm(c, &opts),
+            };
             if let Some(s) = summary {
                 let _ = std::fs::write(s, suite::summary_text(&outcome));
             }

@@ -115,14 +115,36 @@ fn run_file(
     validation: bool,
     opts: &RunOptions,
 ) -> Outcome {
-    let t0 = Instant::now();
-    let out_dir = opts.out_dir.clone().unwrap_or_else(|| PathBuf::from("."));
-    let mess_path = mess_path.unwrap_or_else(|| out_dir.join(format!("{name}.mess")));
-    let resu_path = mess_path.with_extension("resu");
     let bytes = match std::fs::read(comm) {
         Ok(b) => b,
         Err(e) => return Outcome::failed(name, "<F>_ERROR", format!("{}: {e}", comm.display())),
     };
+    let file = comm.file_name().and_then(|f| f.to_str()).unwrap_or("?").to_string();
+    run_text(&file, &decode(&bytes), name, units, mess_path, validation, opts)
+}
+
+/// The scene `aster run` runs when given no case (comm/hardening_curve.comm).
+pub const DEFAULT_SCENE: (&str, &str) = ("hardening_curve.comm", include_str!("../../comm/hardening_curve.comm"));
+
+/// Run the embedded default scene.
+pub fn run_default(opts: &RunOptions) -> Outcome {
+    let (file, src) = DEFAULT_SCENE;
+    run_text(file, src, file.trim_end_matches(".comm"), opts.units.clone(), None, false, opts)
+}
+
+fn run_text(
+    file: &str,
+    src: &str,
+    name: &str,
+    units: Vec<(i64, PathBuf, Dir)>,
+    mess_path: Option<PathBuf>,
+    validation: bool,
+    opts: &RunOptions,
+) -> Outcome {
+    let t0 = Instant::now();
+    let out_dir = opts.out_dir.clone().unwrap_or_else(|| PathBuf::from("."));
+    let mess_path = mess_path.unwrap_or_else(|| out_dir.join(format!("{name}.mess")));
+    let resu_path = mess_path.with_extension("resu");
     // Input units must exist before anything runs.
     for (u, p, d) in &units {
         if *d != Dir::Out && !p.exists() {
@@ -133,8 +155,8 @@ fn run_file(
         Ok(w) => w,
         Err(e) => return Outcome::failed(name, "<F>_ERROR", e.msg),
     };
-    let src = decode(&bytes);
-    let file = comm.file_name().and_then(|f| f.to_str()).unwrap_or("?").to_string();
+    let file = file.to_string();
+    let src = src.to_string();
     let globals = Rc::new(RefCell::new(HashMap::new()));
     let mut session = Session::new(Mode::Run, &file, &src, globals.clone(), work.0.clone());
     session.units = units.into_iter().map(|(u, p, d)| (u, (p, d))).collect();
