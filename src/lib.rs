@@ -7,6 +7,7 @@ pub mod concepts;
 pub mod diag;
 pub mod fem;
 pub mod interp;
+pub mod med;
 pub mod mesh;
 pub mod runner;
 pub mod stages;

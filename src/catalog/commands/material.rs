@@ -25,12 +25,12 @@ fn f(name: &'static str) -> Simp {
 
 /// Optional real parameters.
 fn reals(names: &[&'static str]) -> Vec<Entry> {
-    names.iter().map(|n| Entry::from(r(*n))).collect()
+    names.iter().map(|n| Entry::from(r(n))).collect()
 }
 
 /// Optional function parameters.
 fn funcs(names: &[&'static str]) -> Vec<Entry> {
-    names.iter().map(|n| Entry::from(f(*n))).collect()
+    names.iter().map(|n| Entry::from(f(n))).collect()
 }
 
 /// Every keyword of the list is required (as a rule, for conditional requirements).
