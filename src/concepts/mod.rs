@@ -90,6 +90,7 @@ pub enum ConceptData {
     Table(Table),
     ListReal(Vec<f64>),
     ListInt(Vec<i64>),
+    Mesh(std::rc::Rc<crate::mesh::Mesh>),
 }
 
 /// A command result: its type, the name it was given, and its data.

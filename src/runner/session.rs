@@ -279,6 +279,23 @@ impl StageIo for Session {
         Ok(())
     }
 
+    fn unit_path(&mut self, unit: i64, write: bool) -> Result<PathBuf> {
+        if write {
+            self.written.insert(unit);
+            return Ok(self.workfile(unit));
+        }
+        if self.written.contains(&unit) {
+            return Ok(self.workfile(unit));
+        }
+        match self.units.get(&unit) {
+            Some((p, _)) if p.exists() => Ok(p.clone()),
+            Some((p, _)) => Err(Error::io(format!("unit {unit}: data file {} does not exist", p.display()))),
+            None => Err(Error::io(format!(
+                "unit {unit} is not assigned to a file: add 'F mmed FILE D {unit}' to the .export or --unit {unit}=FILE"
+            ))),
+        }
+    }
+
     fn record(&mut self, rec: CheckRecord) {
         self.records.push(rec);
     }

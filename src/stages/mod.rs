@@ -39,6 +39,10 @@ pub trait StageIo {
     fn read_unit(&mut self, unit: i64) -> Result<String>;
     /// Write to a logical unit: the first write of a run replaces, later ones append.
     fn write_unit(&mut self, unit: i64, text: &str) -> Result<()>;
+    /// The file behind a unit, for binary formats (MED): an existing file to
+    /// read, or (`write`) the file to create in the run's work folder, which the
+    /// runner delivers at the end of a successful run.
+    fn unit_path(&mut self, unit: i64, write: bool) -> Result<std::path::PathBuf>;
     /// Record a check verdict.
     fn record(&mut self, rec: CheckRecord);
     /// Is this a validation test case (NON_REGRESSION checks are then not enforced)?
