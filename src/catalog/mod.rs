@@ -77,7 +77,7 @@ impl Catalogue {
             s.push_str("```\n");
             entries_md(&cmd.entries, 0, &mut s);
             for r in &cmd.rules {
-                s.push_str(&format!("rule: {r:?}\n"));
+                s.push_str(&format!("rule: {r}\n"));
             }
             s.push_str("```\n");
         }
@@ -132,15 +132,15 @@ fn entries_md(entries: &[Entry], depth: usize, s: &mut String) {
                 s.push_str(&format!("{pad}{} = _F({card}{stat}\n", f.name));
                 entries_md(&f.entries, depth + 1, s);
                 for r in &f.rules {
-                    s.push_str(&format!("{pad}  rule: {r:?}\n"));
+                    s.push_str(&format!("{pad}  rule: {r}\n"));
                 }
                 s.push_str(&format!("{pad})\n"));
             }
             Entry::Bloc(b) => {
-                s.push_str(&format!("{pad}when {:?}:\n", b.cond));
+                s.push_str(&format!("{pad}when {}:\n", b.cond));
                 entries_md(&b.entries, depth + 1, s);
                 for r in &b.rules {
-                    s.push_str(&format!("{pad}  rule: {r:?}\n"));
+                    s.push_str(&format!("{pad}  rule: {r}\n"));
                 }
             }
         }

@@ -169,6 +169,35 @@ pub enum Rule {
     PresentAbsent(&'static str, Vec<&'static str>),
 }
 
+impl std::fmt::Display for Rule {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let j = |v: &[&str]| v.join(", ");
+        match self {
+            Rule::UnParmi(k) => write!(f, "exactly one of {}", j(k)),
+            Rule::AuMoinsUn(k) => write!(f, "at least one of {}", j(k)),
+            Rule::Exclus(k) => write!(f, "at most one of {}", j(k)),
+            Rule::Ensemble(k) => write!(f, "all or none of {}", j(k)),
+            Rule::PresentPresent(a, k) => write!(f, "{a} requires {}", j(k)),
+            Rule::PresentAbsent(a, k) => write!(f, "{a} excludes {}", j(k)),
+        }
+    }
+}
+
+impl std::fmt::Display for Cond {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Cond::Eq(k, v) => write!(f, "{k} == {v}"),
+            Cond::In(k, vs) => {
+                write!(f, "{k} in ({})", vs.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", "))
+            }
+            Cond::Present(k) => write!(f, "{k} given"),
+            Cond::Absent(k) => write!(f, "{k} absent"),
+            Cond::And(cs) => write!(f, "{}", cs.iter().map(|c| format!("({c})")).collect::<Vec<_>>().join(" and ")),
+            Cond::Or(cs) => write!(f, "{}", cs.iter().map(|c| format!("({c})")).collect::<Vec<_>>().join(" or ")),
+        }
+    }
+}
+
 /// The concept a command produces.
 #[derive(Clone)]
 pub enum Produces {

@@ -516,14 +516,7 @@ fn all_names<'e>(entries: &'e [Entry], out: &mut Vec<&'e str>) {
 }
 
 fn describe(c: &Cond) -> String {
-    match c {
-        Cond::Eq(k, v) => format!("{k}={v}"),
-        Cond::In(k, vs) => format!("{k} in ({})", vs.iter().map(|v| v.to_string()).collect::<Vec<_>>().join(", ")),
-        Cond::Present(k) => format!("{k} to be given"),
-        Cond::Absent(k) => format!("{k} to be absent"),
-        Cond::And(cs) => cs.iter().map(describe).collect::<Vec<_>>().join(" and "),
-        Cond::Or(cs) => cs.iter().map(describe).collect::<Vec<_>>().join(" or "),
-    }
+    c.to_string()
 }
 
 /// A keyword value as block conditions see it.
