@@ -1172,6 +1172,8 @@ pub fn str_format(fmt: &str, args: &[Value], kw: &[(String, Value)]) -> Result<S
     let c: Vec<char> = fmt.chars().collect();
     let mut out = String::new();
     let mut auto = 0usize;
+    // Automatic ({}) or manual ({0}) numbering, which may not be mixed.
+    let mut mode: Option<bool> = None;
     let mut i = 0;
     while i < c.len() {
         let ch = c[i];
@@ -1219,6 +1221,20 @@ pub fn str_format(fmt: &str, args: &[Value], kw: &[(String, Value)]) -> Result<S
             Some(p) => (&fname[..p], &fname[p..]),
             None => (fname.as_str(), ""),
         };
+        let numbering = if head.is_empty() {
+            Some(true)
+        } else if head.parse::<usize>().is_ok() {
+            Some(false)
+        } else {
+            None
+        };
+        match (numbering, mode) {
+            (Some(a), Some(m)) if a != m => {
+                return Err(Error::python("ValueError: cannot switch between automatic and manual field numbering"))
+            }
+            (Some(a), _) => mode = Some(a),
+            _ => {}
+        }
         let mut v = if head.is_empty() {
             let v =
                 args.get(auto).cloned().ok_or_else(|| Error::python("IndexError: Replacement index out of range"))?;

@@ -1,0 +1,177 @@
+//! The Python subset of command files, run by the interpreter with Python's
+//! semantics. Each program checks itself with `assert`; the expected values
+//! are what CPython gives for the same text.
+
+use aster::interp::{Interp, Value};
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::rc::Rc;
+
+fn run(src: &str) -> HashMap<String, Value> {
+    let module =
+        aster::syntax::parse_module(src).unwrap_or_else(|e| panic!("syntax error at {}: {}", e.offset, e.message));
+    let globals = Rc::new(RefCell::new(HashMap::new()));
+    let mut it = Interp::new(globals.clone(), None);
+    if let Err(e) = it.run(&module) {
+        panic!("{}", e.located("test.comm", src));
+    }
+    let g = globals.borrow().clone();
+    g
+}
+
+fn err(src: &str) -> String {
+    let module = aster::syntax::parse_module(src).unwrap();
+    let mut it = Interp::new(Rc::new(RefCell::new(HashMap::new())), None);
+    it.run(&module).unwrap_err().located("t.comm", src)
+}
+
+#[test]
+fn literals_and_arithmetic() {
+    run(r#"
+E = 5800E6 ; NU = .5 ; X = 1. ; Y = 1.E-6 ; H = 0x1F ; B = 0b101 ; BIG = 1_000_000
+assert E == 5.8e9 and NU == 0.5 and X == 1.0 and Y == 1e-06 and H == 31 and B == 5 and BIG == 10**6
+assert 7 // 2 == 3 and -7 // 2 == -4 and 7 % -2 == -1 and -7 % 2 == 1
+assert 7 / 2 == 3.5 and 2 ** -1 == 0.5 and 2 ** 10 == 1024 and (-2) ** 2 == 4 and -2 ** 2 == -4
+assert isinstance(7 // 2, int) and isinstance(7 / 7, float) and isinstance(2 * 3.0, float)
+assert 1 < 2 <= 2 < 3 and not (1 < 2 > 3) and 1 == 1.0 and 3 != 4
+assert abs(-3) == 3 and abs(-2.5) == 2.5 and round(2.5) == 2 and round(3.5) == 4 and round(2.675, 2) == 2.67
+assert int(3.9) == 3 and int(-3.9) == -3 and int("42") == 42 and float("1e3") == 1000.0 and str(1.0) == "1.0"
+assert min(3, 1, 2) == 1 and max([3, 1, 2]) == 3 and sum([1, 2, 3]) == 6 and sum([0.5, 0.25], 1) == 1.75
+assert divmod(7, 3) == (2, 1) and pow(2, 3) == 8 and 1e16 == 10**16
+z = 1 + 2j
+assert z.real == 1.0 and z.imag == 2.0 and abs(3 + 4j) == 5.0
+"#);
+}
+
+#[test]
+fn strings_and_formatting() {
+    let g = run(r#"
+a = 'single' ; b = "double" ; c = '''triple
+quoted''' ; d = """also "triple" """ ; e = 'esc\taped\n'
+assert c == "triple\nquoted" and d == 'also "triple" ' and len(e) == 9
+assert "N" + str(12) == "N12" and "ab" * 3 == "ababab" and "x,y".split(",") == ["x", "y"]
+assert "%d-%05.2f-%s-%e" % (3, 3.14159, "t", 12345.678) == "3-03.14-t-1.234568e+04"
+assert "%(a)s=%(b)g" % {"a": "k", "b": 0.5} == "k=0.5" and "%3s|%-3s|" % ("a", "b") == "  a|b  |"
+assert "{} {:.3f} {name}".format(1, 2.0, name="n") == "1 2.000 n" and "{1}{0}{1}".format("a", "b") == "bab"
+assert "{:>6}|{:<4}|{:^5}|{:+d}".format("r", "l", "c", 5) == "     r|l   |  c  |+5"
+w = 8
+assert f"{w:>{w}}" == "       8" and f"{w * 2!r}" == "16" and f"{'q'}{{}}" == "q{}"
+assert f"{3.0:.2e}" == "3.00e+00" and f"{1/3:.4g}" == "0.3333" and format(0.1, ".1%") == "10.0%"
+assert repr(0.1) == "0.1" and repr(1e-7) == "1e-07" and repr(1e16) == "1e+16" and str(1/3) == "0.3333333333333333"
+assert "  pad ".strip() == "pad" and "a-b-c".replace("-", "+") == "a+b+c" and "MOT".lower() == "mot"
+assert "NM61".startswith("NM") and "x".join(["a", "b"]) == "axb" and "abc"[::-1] == "cba" and "abc"[1:] == "bc"
+s = str([1, 2.5, 'x', (1,), {'k': None}])
+"#);
+    assert_eq!(aster::interp::format::to_str(&g["s"]), "[1, 2.5, 'x', (1,), {'k': None}]");
+}
+
+#[test]
+fn containers_and_assignment() {
+    run(r#"
+t = (1, 2, 3) ; l = [1, 2, 3] ; d = {"a": 1, "b": 2} ; one = (5,) ; empty = ()
+a, b = 1, 2
+a, b = b, a
+assert (a, b) == (2, 1)
+(x, y), z = (1, 2), 3
+assert x + y + z == 6
+l[0] = 10 ; l += [4] ; l.append(5) ; d["c"] = 3
+assert l == [10, 2, 3, 4, 5] and l[-1] == 5 and l[1:3] == [2, 3] and l[::2] == [10, 3, 5]
+assert len(d) == 3 and list(d.keys()) == ["a", "b", "c"] and d.get("z", 0) == 0 and "a" in d
+n = 0
+n += 5 ; n -= 1 ; n *= 3 ; n //= 5
+assert n == 2
+DEPZON = [None] * 5
+DEPZON[4] = "zone"
+assert DEPZON[4] == "zone" and DEPZON[0] is None
+kw = dict(A=1, B=2)
+kw.update({"C": 3})
+assert sorted(kw.values(), reverse=True) == [3, 2, 1]
+del l[0]
+assert l == [2, 3, 4, 5] and 3 in l and 9 not in l and t.index(2) == 1 and len(one) == 1 and empty == ()
+"#);
+}
+
+#[test]
+fn control_flow_functions_and_comprehensions() {
+    run(r#"
+def depx(x, y):
+    if y < 0.5 * x + 1 and x < 0:
+        return -0.25
+    elif y > 0.5 * x + 1:
+        return -0.5
+    else:
+        return 0.75
+
+assert depx(-1.0, 0.0) == -0.25 and depx(0.0, 2.0) == -0.5 and depx(1.0, 0.0) == 0.75
+
+def f(a, b=2, *args, **kw):
+    return a + b + sum(args) + len(kw)
+
+assert f(1) == 3 and f(1, 1) == 2 and f(1, 1, 1, 1) == 4 and f(1, c=0, d=0) == 5 and f(**{"a": 1, "b": 0}) == 1
+
+def counter():
+    total = 0
+    for i in range(10):
+        if i % 2:
+            continue
+        if i > 6:
+            break
+        total += i
+    else:
+        total = -1
+    return total
+
+assert counter() == 12
+
+k = 0
+while k < 5:
+    k += 1
+else:
+    k = k * 10
+assert k == 50
+
+sq = [i * i for i in range(5) if i % 2 == 0]
+pairs = {k: v for k, v in zip("abc", range(3))}
+nested = [(i, j) for i in range(3) for j in range(i)]
+assert sq == [0, 4, 16] and pairs == {"a": 0, "b": 1, "c": 2} and len(nested) == 3
+assert [i for i, v in enumerate(["x", "y"], 1)] == [1, 2] and list(range(10, 0, -3)) == [10, 7, 4, 1]
+g = lambda x, n=2: x ** n
+assert g(3) == 9 and list(map(g, [1, 2])) == [1, 4] and sorted([3, 1, 2], key=lambda v: -v) == [3, 2, 1]
+assert any([0, 1]) and all([1, 1]) and not all([]) is False and max(["b", "a"], key=len) == "b"
+
+def outer(n):
+    def inner(m):
+        return n * m
+    return inner(3)
+
+assert outer(2) == 6
+cond = "yes" if 2 > 1 else "no"
+assert cond == "yes" and (0 or "x") == "x" and (1 and 0) == 0
+"#);
+}
+
+#[test]
+fn math_module() {
+    run(r#"
+import math
+from math import pi, sqrt as racine
+from math import *
+assert abs(math.sin(pi / 2) - 1) < 1e-15 and racine(16) == 4.0 and exp(0) == 1.0 and log(e) == 1.0
+assert math.floor(-1.5) == -2 and ceil(1.2) == 2 and math.log(8, 2) == 3.0 and isinstance(math.floor(2.5), int)
+assert abs(atan2(1, 1) - pi / 4) < 1e-15 and math.hypot(3, 4) == 5.0 and degrees(pi) == 180.0
+"#);
+}
+
+#[test]
+fn python_errors_are_located() {
+    assert!(err("x = 1\ny = x + 'a'\n")
+        .starts_with("t.comm:2:5: TypeError: unsupported operand type(s) for +: 'int' and 'str'"));
+    assert!(err("l = [1]\nv = l[3]\n").contains("t.comm:2:5: IndexError"));
+    assert!(err("d = {}\nv = d['k']\n").contains("KeyError: 'k'"));
+    assert!(err("v = 1 / 0\n").contains("ZeroDivisionError"));
+    assert!(err("import math\nv = math.sqrt(-1)\n").contains("math domain error"));
+    assert!(err("def f(x):\n    return f(x)\nf(1)\n").contains("RecursionError"));
+    assert!(err("from os import path\n").contains("module 'os' is not supported"));
+    assert!(err("a, b = (1, 2, 3)\n").contains("cannot unpack 3 values into 2 targets"));
+    assert!(err("s = '{} {0}'.format(1)\n").contains("cannot switch between automatic and manual field numbering"));
+}
