@@ -10,5 +10,6 @@ pub mod interp;
 pub mod med;
 pub mod mesh;
 pub mod runner;
+pub mod solve;
 pub mod stages;
 pub mod syntax;

@@ -51,12 +51,94 @@ enum Cmd {
         #[arg(long)]
         junit: Option<PathBuf>,
     },
+    /// MED meshes: summary of a file, structured box generator.
+    Mesh {
+        #[command(subcommand)]
+        action: MeshCmd,
+    },
+    /// Compare the meshes and node fields of two MED files (per field,
+    /// component and time step: max absolute and relative differences and
+    /// where). Exit code 0 within tolerance, 1 beyond, 2 on error.
+    Diff {
+        a: PathBuf,
+        b: PathBuf,
+        /// Relative tolerance: |a-b| <= atol + rtol * max(|a|, |b|).
+        #[arg(long, default_value_t = 1e-6)]
+        rtol: f64,
+        /// Absolute tolerance.
+        #[arg(long, default_value_t = 1e-12)]
+        atol: f64,
+    },
     /// Show the command catalogue.
     Catalog {
         /// Print docs/SUPPORTED.md.
         #[arg(long)]
         markdown: bool,
     },
+}
+
+#[derive(Subcommand)]
+enum MeshCmd {
+    /// Nodes, cells per type, groups with sizes and bounding box of the
+    /// meshes of a MED file.
+    Info {
+        file: PathBuf,
+        /// Only this mesh (default: every mesh of the file).
+        #[arg(long)]
+        mesh: Option<String>,
+    },
+    /// Write a structured box mesh with named boundary groups (2D: edge
+    /// groups BAS, DROITE, HAUT, GAUCHE and cell group SURFACE; 3D: face
+    /// groups XMIN, XMAX, YMIN, YMAX, ZMIN, ZMAX and cell group VOLUME;
+    /// each boundary name is both a cell group and a node group).
+    Box {
+        /// QUAD4, QUAD8, HEXA8 or HEXA20.
+        #[arg(long)]
+        cell: String,
+        /// Cells per axis: NX,NY[,NZ].
+        #[arg(long, value_delimiter = ',', required = true)]
+        n: Vec<usize>,
+        /// Box lengths: LX,LY[,LZ].
+        #[arg(long, value_delimiter = ',', required = true)]
+        size: Vec<f64>,
+        /// Output MED file.
+        #[arg(short = 'o', long)]
+        output: PathBuf,
+        /// Mesh name in the file.
+        #[arg(long, default_value = "MAIL")]
+        name: String,
+    },
+}
+
+fn mesh_command(action: MeshCmd) -> Result<(), aster::diag::Error> {
+    use aster::stages::mesh::describe;
+    match action {
+        MeshCmd::Info { file, mesh } => {
+            let names = match mesh {
+                Some(m) => vec![m],
+                None => aster::med::list_meshes(&file)?,
+            };
+            if names.is_empty() {
+                return Err(aster::diag::Error::io(format!("MED file {}: contains no mesh", file.display())));
+            }
+            println!("file {}", file.display());
+            for n in names {
+                let m = aster::med::read_mesh(&file, Some(&n))?;
+                print!("{}", describe(&m, &n));
+            }
+            Ok(())
+        }
+        MeshCmd::Box { cell, n, size, output, name } => {
+            let t = aster::mesh::CellType::from_name(&cell.to_ascii_uppercase()).ok_or_else(|| {
+                aster::diag::Error::runtime(format!("--cell {cell}: expected QUAD4, QUAD8, HEXA8 or HEXA20"))
+            })?;
+            let m = aster::mesh::generate::box_mesh(t, &n, &size)?;
+            aster::med::write_mesh(&output, &m, &name)?;
+            println!("wrote {}", output.display());
+            print!("{}", describe(&m, &name));
+            Ok(())
+        }
+    }
 }
 
 fn parse_unit(s: &str) -> Result<(i64, PathBuf, Dir), String> {
@@ -138,6 +220,33 @@ fn main() -> ExitCode {
                 ExitCode::SUCCESS
             } else {
                 ExitCode::from(1)
+            }
+        }
+        Cmd::Mesh { action } => match mesh_command(action) {
+            Ok(()) => ExitCode::SUCCESS,
+            Err(e) => {
+                eprintln!("aster: {e}");
+                ExitCode::from(2)
+            }
+        },
+        Cmd::Diff { a, b, rtol, atol } => {
+            if !(rtol >= 0.0 && atol >= 0.0) {
+                eprintln!("aster: --rtol and --atol must be non-negative");
+                return ExitCode::from(2);
+            }
+            match aster::med::diff::diff_files(&a, &b, aster::med::diff::Tolerance { rtol, atol }) {
+                Ok(r) => {
+                    print!("{}", r.text);
+                    if r.within {
+                        ExitCode::SUCCESS
+                    } else {
+                        ExitCode::from(1)
+                    }
+                }
+                Err(e) => {
+                    eprintln!("aster: {e}");
+                    ExitCode::from(2)
+                }
             }
         }
         Cmd::Catalog { markdown } => {

@@ -8,6 +8,8 @@
 //! the shared container.
 
 pub mod function;
+pub mod model;
+pub mod result;
 pub mod table;
 
 use std::cell::{Ref, RefCell, RefMut};
@@ -91,6 +93,11 @@ pub enum ConceptData {
     ListReal(Vec<f64>),
     ListInt(Vec<i64>),
     Mesh(std::rc::Rc<crate::mesh::Mesh>),
+    Model(model::Model),
+    Material(std::rc::Rc<model::Material>),
+    MaterialField(model::MaterialField),
+    Load(model::Load),
+    Result(result::ResultData),
 }
 
 /// A command result: its type, the name it was given, and its data.

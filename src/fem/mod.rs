@@ -3,6 +3,9 @@
 //! Code_Aster's conventions (local node order, reference domains, Gauss
 //! point families and their numbering).
 
+pub mod assembly;
+pub mod dofs;
+pub mod elasticity;
 pub mod quadrature;
 pub mod reference;
 

@@ -194,3 +194,15 @@ pub fn read_node_field(path: &Path, field_name: &str) -> Result<NodeField> {
     }
     Ok(NodeField { mesh_name, components, steps })
 }
+
+/// Names of the fields stored in a MED file (`/CHA`), sorted.
+pub fn list_fields(path: &Path) -> Result<Vec<String>> {
+    let file = open_read(path)?;
+    if !file.link_exists("CHA") {
+        return Ok(Vec::new());
+    }
+    let cha = file.group("CHA").map_err(|e| h5err(path, "group /CHA", e))?;
+    let mut names = cha.member_names().map_err(|e| h5err(path, "listing /CHA", e))?;
+    names.sort();
+    Ok(names)
+}

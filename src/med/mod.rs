@@ -18,12 +18,13 @@
 //! (see [`types::MED_TYPES`]), file order within a type. Unnamed entities get
 //! Code_Aster's default names `N1, N2, ...` / `M1, M2, ...`.
 
+pub mod diff;
 mod field;
 mod read;
 pub mod types;
 mod write;
 
-pub use field::{read_node_field, write_node_field, NodeField};
+pub use field::{list_fields, read_node_field, write_node_field, NodeField};
 pub use read::{list_meshes, read_mesh};
 pub use write::write_mesh;
 

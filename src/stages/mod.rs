@@ -6,6 +6,10 @@
 
 pub mod control;
 pub mod functions;
+pub mod mesh;
+pub mod model;
+pub mod results;
+pub mod statics;
 pub mod table_io;
 pub mod tables;
 pub mod tests;
@@ -84,6 +88,18 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "IMPR_TABLE" => tables::impr_table,
         "TEST_TABLE" => tests::test_table,
         "TEST_FONCTION" => tests::test_fonction,
+        "LIRE_MAILLAGE" => mesh::lire_maillage,
+        "DEFI_GROUP" => mesh::defi_group,
+        "IMPR_RESU" => mesh::impr_resu,
+        "AFFE_MODELE" => model::affe_modele,
+        "DEFI_MATERIAU" => model::defi_materiau,
+        "AFFE_MATERIAU" => model::affe_materiau,
+        "AFFE_CHAR_MECA" => model::affe_char_meca,
+        "AFFE_CHAR_MECA_F" => model::affe_char_meca_f,
+        "TEST_RESU" => results::test_resu,
+        "MECA_STATIQUE" => statics::meca_statique,
+        "CALC_CHAMP" => statics::calc_champ,
+        "POST_RELEVE_T" => results::post_releve_t,
         _ => return None,
     })
 }

@@ -1,0 +1,140 @@
+//! Models, materials, material fields and mechanical loads: what AFFE_MODELE,
+//! DEFI_MATERIAU, AFFE_MATERIAU and AFFE_CHAR_MECA(_F) produce.
+
+use super::ConceptRef;
+use crate::mesh::{CellType, Mesh};
+use std::collections::BTreeMap;
+use std::rc::Rc;
+
+/// What a modelisation puts on a cell: the bulk element, or a boundary
+/// (skin) element that carries loads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    Bulk,
+    Skin,
+}
+
+/// The element a model assigns to one cell.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Element {
+    pub phenomenon: String,
+    pub modelisation: String,
+    pub role: Role,
+}
+
+#[derive(Debug)]
+pub struct Model {
+    pub mesh: Rc<Mesh>,
+    /// The mesh concept (for names in messages and results).
+    pub mesh_concept: ConceptRef,
+    /// Per cell: its element, or None where the model puts nothing.
+    pub elements: Vec<Option<Element>>,
+}
+
+/// The space dimension a modelisation works in, and whether it is one we know.
+pub fn modelisation_dim(m: &str) -> Option<usize> {
+    match m {
+        "3D" | "3D_HM" | "3D_HMD" | "3D_SI" | "3D_DIL" => Some(3),
+        "D_PLAN" | "C_PLAN" | "AXIS" | "D_PLAN_HM" | "D_PLAN_HMD" | "AXIS_HM" | "AXIS_HMD" | "D_PLAN_SI"
+        | "AXIS_SI" => Some(2),
+        _ => None,
+    }
+}
+
+/// The role of a cell type under a modelisation of dimension `dim`, or None
+/// when the modelisation puts no element on it (as Code_Aster does with, e.g.,
+/// POI1 cells under D_PLAN).
+pub fn role_of(dim: usize, t: CellType) -> Option<Role> {
+    match (dim, t.dim()) {
+        (3, 3) | (2, 2) => Some(Role::Bulk),
+        (3, 2) | (2, 1) => Some(Role::Skin),
+        _ => None,
+    }
+}
+
+impl Model {
+    /// The dimension of the model's bulk elements.
+    pub fn dim(&self) -> usize {
+        self.elements
+            .iter()
+            .flatten()
+            .filter(|e| e.role == Role::Bulk)
+            .filter_map(|e| modelisation_dim(&e.modelisation))
+            .max()
+            .unwrap_or(self.mesh.dim)
+    }
+    /// The modelisations used, each once.
+    pub fn modelisations(&self) -> Vec<String> {
+        let mut v: Vec<String> = self.elements.iter().flatten().map(|e| e.modelisation.clone()).collect();
+        v.sort();
+        v.dedup();
+        v
+    }
+}
+
+/// A material parameter: a real, a function of a variable, or a text.
+#[derive(Debug, Clone)]
+pub enum MatValue {
+    Real(f64),
+    Func(ConceptRef),
+    Text(String),
+}
+
+/// DEFI_MATERIAU: behaviours (ELAS, RUPT_FRAG, THM_*, ...) and their parameters.
+#[derive(Debug, Clone, Default)]
+pub struct Material {
+    pub behaviours: BTreeMap<String, BTreeMap<String, MatValue>>,
+    /// Simple keywords at the top level (COMP_THM, ...).
+    pub options: BTreeMap<String, String>,
+}
+
+impl Material {
+    /// A real parameter of a behaviour, if given as a real.
+    pub fn real(&self, behaviour: &str, param: &str) -> Option<f64> {
+        match self.behaviours.get(behaviour)?.get(param)? {
+            MatValue::Real(v) => Some(*v),
+            _ => None,
+        }
+    }
+}
+
+/// AFFE_MATERIAU: a material per cell.
+#[derive(Debug)]
+pub struct MaterialField {
+    pub mesh: Rc<Mesh>,
+    /// Per cell: the material concept assigned, if any.
+    pub cells: Vec<Option<ConceptRef>>,
+}
+
+/// A load value: a real, or a function of space (and time) evaluated later.
+#[derive(Debug, Clone)]
+pub enum LoadValue {
+    Real(f64),
+    Func(ConceptRef),
+}
+
+/// One item of a mechanical load.
+#[derive(Debug, Clone)]
+pub enum LoadItem {
+    /// DDL_IMPO: a component of a node prescribed.
+    Dof { node: usize, component: String, value: LoadValue },
+    /// FORCE_NODALE: a force on a node.
+    NodalForce { node: usize, component: String, value: LoadValue },
+    /// FORCE_CONTOUR / FORCE_FACE: a force per unit length/area on skin cells.
+    SurfaceForce { cells: Vec<usize>, components: Vec<(String, LoadValue)> },
+    /// PRES_REP: a pressure on skin cells.
+    Pressure { cells: Vec<usize>, value: LoadValue },
+    /// PESANTEUR: gravity of magnitude `g` along `direction`, on the cells.
+    Gravity { g: f64, direction: [f64; 3], cells: Option<Vec<usize>> },
+    /// LIAISON_DDL: Σ coef·u(node, component) = value.
+    Relation { terms: Vec<(usize, String, f64)>, value: LoadValue },
+}
+
+/// AFFE_CHAR_MECA(_F): the load items on a model.
+#[derive(Debug)]
+pub struct Load {
+    pub model: ConceptRef,
+    pub items: Vec<LoadItem>,
+    /// AFFE_CHAR_MECA_F: values are functions.
+    pub functional: bool,
+}

@@ -1,0 +1,877 @@
+//! Isotropic linear elasticity on isoparametric elements, in Code_Aster's
+//! conventions.
+//!
+//! * Modelisations ([`Modelisation`]): `3D`, `D_PLAN` (plane strain),
+//!   `C_PLAN` (plane stress) and `AXIS` (axisymmetric, x = r, y = z, per
+//!   radian: the integration weight is multiplied by r, no 2π).
+//! * Element dofs are numbered node by node, in Code_Aster's local node
+//!   order: `[DX1, DY1, (DZ1), DX2, ...]`.
+//! * Integration uses Code_Aster's default `RIGI` family of each cell
+//!   ([`family_rule`]); boundary loads use the `RIGI` family of the skin
+//!   elements ([`boundary_rule`]).
+//! * Stress / strain components in Code_Aster's order: 2D `XX YY ZZ XY`,
+//!   3D `XX YY ZZ XY XZ YZ`; strains are tensorial (`EPXY = γxy / 2`).
+//!   `D_PLAN`: `EPZZ = 0`, `SIZZ = λ (εxx + εyy)`; `C_PLAN`: `SIZZ = 0`,
+//!   `EPZZ = -ν/(1-ν) (εxx + εyy)`; `AXIS`: `EPZZ` is the hoop strain
+//!   `u_r / r` and `SIZZ` the hoop stress.
+//! * Gauss → node extrapolation (`*_ELNO`) as Code_Aster's `inmat4`/`inmat6`:
+//!   one point → copied to every node; otherwise a least-squares fit of the
+//!   values with the shape functions of the vertex element (QUAD4 for QUAD8,
+//!   HEXA8 for HEXA20, ...) gives vertex values, and other nodes interpolate
+//!   them linearly (mid-edge node = mean of the edge's ends).
+//! * Pressure (`PRES_REP`) is positive in compression: the traction is
+//!   `-p n`. In 2D, along a segment travelled from its first to its second
+//!   node with tangent `t = dx/ds`, `n = (t_y, -t_x)`, and the optional shear
+//!   `CISA` acts along `(-n_y, n_x) = t` (Code_Aster `vff2dn` / `te0089`). In
+//!   3D, `n = (∂x/∂ξ × ∂x/∂η) / |…|` (Code_Aster `nmpr3d`): the face must be
+//!   oriented (`ORIE_PEAU_3D`) so that `n` points out of the solid.
+
+use super::quadrature::{aster_rule, family_rule, Family, QuadratureRule};
+use super::reference::{node_coords, shape, shape_and_deriv, MAX_NODES};
+use crate::mesh::CellType;
+use std::fmt;
+
+/// The mechanical modelisations handled here.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Modelisation {
+    /// `3D`: volume cells, 3 dofs per node.
+    ThreeD,
+    /// `D_PLAN`: plane strain.
+    DPlan,
+    /// `C_PLAN`: plane stress.
+    CPlan,
+    /// `AXIS`: axisymmetric (x = r ≥ 0, y = axis).
+    Axis,
+}
+
+impl Modelisation {
+    /// From Code_Aster's name (`"3D"`, `"D_PLAN"`, `"C_PLAN"`, `"AXIS"`).
+    pub fn from_name(s: &str) -> Option<Modelisation> {
+        match s {
+            "3D" => Some(Modelisation::ThreeD),
+            "D_PLAN" => Some(Modelisation::DPlan),
+            "C_PLAN" => Some(Modelisation::CPlan),
+            "AXIS" => Some(Modelisation::Axis),
+            _ => None,
+        }
+    }
+
+    /// Code_Aster's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Modelisation::ThreeD => "3D",
+            Modelisation::DPlan => "D_PLAN",
+            Modelisation::CPlan => "C_PLAN",
+            Modelisation::Axis => "AXIS",
+        }
+    }
+
+    /// Space dimension = displacement components per node (2 or 3).
+    pub fn dim(self) -> usize {
+        if self == Modelisation::ThreeD {
+            3
+        } else {
+            2
+        }
+    }
+
+    /// Number of stress / strain components (4 in 2D, 6 in 3D).
+    pub fn nsig(self) -> usize {
+        if self == Modelisation::ThreeD {
+            6
+        } else {
+            4
+        }
+    }
+
+    /// Stress component names, in order.
+    pub fn sigma_names(self) -> &'static [&'static str] {
+        const N: [&str; 6] = ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"];
+        &N[..self.nsig()]
+    }
+
+    /// Strain component names, in order.
+    pub fn epsilon_names(self) -> &'static [&'static str] {
+        const N: [&str; 6] = ["EPXX", "EPYY", "EPZZ", "EPXY", "EPXZ", "EPYZ"];
+        &N[..self.nsig()]
+    }
+
+    /// True for the cell types carrying volume (stiffness) elements.
+    pub fn accepts_volume_cell(self, t: CellType) -> bool {
+        t.dim() == self.dim()
+    }
+
+    /// True for the cell types carrying boundary (load) elements.
+    pub fn accepts_boundary_cell(self, t: CellType) -> bool {
+        t.dim() + 1 == self.dim()
+    }
+}
+
+/// Isotropic linear elastic material (`DEFI_MATERIAU/ELAS`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IsoElastic {
+    pub e: f64,
+    pub nu: f64,
+}
+
+impl IsoElastic {
+    pub fn new(e: f64, nu: f64) -> IsoElastic {
+        IsoElastic { e, nu }
+    }
+
+    /// Lamé coefficients (λ, μ).
+    pub fn lame(&self) -> (f64, f64) {
+        let mu = self.e / (2.0 * (1.0 + self.nu));
+        let lambda = self.e * self.nu / ((1.0 + self.nu) * (1.0 - 2.0 * self.nu));
+        (lambda, mu)
+    }
+
+    /// The (λ, μ) of the in-plane law actually used by `m`: plane stress
+    /// replaces λ by λ* = 2λμ / (λ + 2μ) = Eν / (1 - ν²).
+    fn effective_lame(&self, m: Modelisation) -> (f64, f64) {
+        let (l, mu) = self.lame();
+        if m == Modelisation::CPlan {
+            (2.0 * l * mu / (l + 2.0 * mu), mu)
+        } else {
+            (l, mu)
+        }
+    }
+
+    /// Hooke matrix of `m` (`nsig × nsig` block of the returned array), acting
+    /// on strains with engineering shear (γ = 2 ε): σ = D [εxx, εyy, εzz, γxy
+    /// (, γxz, γyz)]. For `C_PLAN` the εzz row and column are zero (εzz is
+    /// eliminated by σzz = 0).
+    pub fn hooke(&self, m: Modelisation) -> [[f64; 6]; 6] {
+        let (l, mu) = self.lame();
+        let mut d = [[0.0; 6]; 6];
+        if m == Modelisation::CPlan {
+            let c = self.e / (1.0 - self.nu * self.nu);
+            d[0][0] = c;
+            d[1][1] = c;
+            d[0][1] = c * self.nu;
+            d[1][0] = c * self.nu;
+            d[3][3] = mu;
+            return d;
+        }
+        for i in 0..3 {
+            for j in 0..3 {
+                d[i][j] = l;
+            }
+            d[i][i] = l + 2.0 * mu;
+        }
+        for k in 3..m.nsig() {
+            d[k][k] = mu;
+        }
+        d
+    }
+}
+
+/// Errors of the element computations.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ElementError {
+    /// The Jacobian determinant is not positive at a Gauss point (inverted
+    /// or degenerate cell).
+    BadJacobian { cell_type: CellType, gauss_point: usize, det: f64 },
+    /// The cell type does not fit the modelisation (e.g. a TETRA4 in D_PLAN).
+    WrongCellType { cell_type: CellType, modelisation: Modelisation },
+    /// An AXIS Gauss point at r ≤ 0.
+    NonPositiveRadius { gauss_point: usize, r: f64 },
+}
+
+impl fmt::Display for ElementError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ElementError::BadJacobian { cell_type, gauss_point, det } => write!(
+                f,
+                "{}: non-positive Jacobian determinant {det:e} at Gauss point {} (inverted or degenerate cell)",
+                cell_type.name(),
+                gauss_point + 1
+            ),
+            ElementError::WrongCellType { cell_type, modelisation } => {
+                write!(f, "cell type {} is not supported by modelisation {}", cell_type.name(), modelisation.name())
+            }
+            ElementError::NonPositiveRadius { gauss_point, r } => {
+                write!(f, "AXIS: Gauss point {} has radius {r:e} ≤ 0 (x must be the radius, ≥ 0)", gauss_point + 1)
+            }
+        }
+    }
+}
+
+impl std::error::Error for ElementError {}
+
+// ---------------------------------------------------------------------------
+// Gauss-point geometry
+// ---------------------------------------------------------------------------
+
+/// Geometry of a volume element at one Gauss point.
+#[derive(Clone)]
+pub struct GaussGeom {
+    /// Weight × |det J| (× r in AXIS).
+    pub w: f64,
+    /// Real coordinates of the point.
+    pub x: [f64; 3],
+    /// Shape function values.
+    pub n: [f64; MAX_NODES],
+    /// Shape function gradients in real coordinates.
+    pub dn: [[f64; 3]; MAX_NODES],
+}
+
+fn inv_det(j: &[[f64; 3]; 3], dim: usize) -> (f64, [[f64; 3]; 3]) {
+    let mut inv = [[0.0; 3]; 3];
+    if dim == 2 {
+        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+        inv[0][0] = j[1][1] / det;
+        inv[0][1] = -j[0][1] / det;
+        inv[1][0] = -j[1][0] / det;
+        inv[1][1] = j[0][0] / det;
+        (det, inv)
+    } else {
+        let c00 = j[1][1] * j[2][2] - j[1][2] * j[2][1];
+        let c01 = j[1][2] * j[2][0] - j[1][0] * j[2][2];
+        let c02 = j[1][0] * j[2][1] - j[1][1] * j[2][0];
+        let det = j[0][0] * c00 + j[0][1] * c01 + j[0][2] * c02;
+        inv[0][0] = c00 / det;
+        inv[1][0] = c01 / det;
+        inv[2][0] = c02 / det;
+        inv[0][1] = (j[0][2] * j[2][1] - j[0][1] * j[2][2]) / det;
+        inv[1][1] = (j[0][0] * j[2][2] - j[0][2] * j[2][0]) / det;
+        inv[2][1] = (j[0][1] * j[2][0] - j[0][0] * j[2][1]) / det;
+        inv[0][2] = (j[0][1] * j[1][2] - j[0][2] * j[1][1]) / det;
+        inv[1][2] = (j[0][2] * j[1][0] - j[0][0] * j[1][2]) / det;
+        inv[2][2] = (j[0][0] * j[1][1] - j[0][1] * j[1][0]) / det;
+        (det, inv)
+    }
+}
+
+/// Geometry at every point of `rule` for a volume cell of the modelisation.
+pub fn gauss_geometry(
+    m: Modelisation,
+    t: CellType,
+    coords: &[[f64; 3]],
+    rule: &QuadratureRule,
+) -> Result<Vec<GaussGeom>, ElementError> {
+    if !m.accepts_volume_cell(t) {
+        return Err(ElementError::WrongCellType { cell_type: t, modelisation: m });
+    }
+    let dim = m.dim();
+    let nno = t.nnodes();
+    assert_eq!(coords.len(), nno, "{}: wrong number of node coordinates", t.name());
+    let mut out = Vec::with_capacity(rule.len());
+    let mut n = [0.0; MAX_NODES];
+    let mut dref = [[0.0; 3]; MAX_NODES];
+    for (g, (xi, w)) in rule.points.iter().zip(&rule.weights).enumerate() {
+        shape_and_deriv(t, xi, &mut n[..nno], &mut dref[..nno]);
+        let mut j = [[0.0; 3]; 3];
+        let mut x = [0.0; 3];
+        for a in 0..nno {
+            for i in 0..3 {
+                x[i] += n[a] * coords[a][i];
+            }
+            for i in 0..dim {
+                for k in 0..dim {
+                    j[i][k] += coords[a][i] * dref[a][k];
+                }
+            }
+        }
+        let (det, inv) = inv_det(&j, dim);
+        if det.is_nan() || det <= 0.0 {
+            return Err(ElementError::BadJacobian { cell_type: t, gauss_point: g, det });
+        }
+        let mut dn = [[0.0; 3]; MAX_NODES];
+        for a in 0..nno {
+            for i in 0..dim {
+                dn[a][i] = (0..dim).map(|k| dref[a][k] * inv[k][i]).sum();
+            }
+        }
+        let mut wd = w * det;
+        if m == Modelisation::Axis {
+            if x[0] <= 0.0 {
+                return Err(ElementError::NonPositiveRadius { gauss_point: g, r: x[0] });
+            }
+            wd *= x[0];
+        }
+        out.push(GaussGeom { w: wd, x, n, dn });
+    }
+    Ok(out)
+}
+
+/// Default stiffness rule of a volume cell (`RIGI`).
+pub fn rigi_rule(t: CellType) -> QuadratureRule {
+    family_rule(t, Family::Rigi)
+}
+
+/// `RIGI` rule of the skin (boundary) elements carrying surface loads:
+/// SEG2 FPG2, SEG3 FPG4, TRIA3 FPG3, TRIA6 FPG6, QUAD4 FPG4, QUAD8/9 FPG9
+/// (Code_Aster `meca_2d_skin.py`, `MECA_FACE*` of `meca_3d.py`).
+pub fn boundary_rule(t: CellType) -> QuadratureRule {
+    use CellType::*;
+    let name = match t {
+        Seg2 => "FPG2",
+        Seg3 => "FPG4",
+        Tria3 => "FPG3",
+        Tria6 => "FPG6",
+        Quad4 => "FPG4",
+        Quad8 | Quad9 => "FPG9",
+        _ => "FPG1",
+    };
+    aster_rule(t, name).unwrap_or_else(|| panic!("no {name} rule on {}", t.name()))
+}
+
+// ---------------------------------------------------------------------------
+// Stiffness
+// ---------------------------------------------------------------------------
+
+/// Element stiffness matrix `K = ∫ Bᵀ D B`, row-major, size
+/// `(nnodes·dim)²`, dofs node by node.
+pub fn stiffness(
+    m: Modelisation,
+    mat: &IsoElastic,
+    t: CellType,
+    coords: &[[f64; 3]],
+) -> Result<Vec<f64>, ElementError> {
+    let rule = rigi_rule(t);
+    let gg = gauss_geometry(m, t, coords, &rule)?;
+    let dim = m.dim();
+    let nno = t.nnodes();
+    let nd = nno * dim;
+    let mut k = vec![0.0; nd * nd];
+    let (l, mu) = mat.effective_lame(m);
+    let l2m = l + 2.0 * mu;
+    for g in &gg {
+        let w = g.w;
+        let r = g.x[0];
+        for a in 0..nno {
+            let da = g.dn[a];
+            for b in 0..=a {
+                let db = g.dn[b];
+                let dot: f64 = (0..dim).map(|i| da[i] * db[i]).sum();
+                for i in 0..dim {
+                    let row = (a * dim + i) * nd + b * dim;
+                    for j in 0..dim {
+                        let mut v = l * da[i] * db[j] + mu * da[j] * db[i];
+                        if i == j {
+                            v += mu * dot;
+                        }
+                        k[row + j] += w * v;
+                    }
+                }
+                if m == Modelisation::Axis {
+                    let (na, nb) = (g.n[a] / r, g.n[b] / r);
+                    // hoop terms: (λ+2μ) εθθ εθθ + λ (εθθ tr2 + tr2 εθθ)
+                    k[(a * dim) * nd + b * dim] += w * l2m * na * nb;
+                    for j in 0..dim {
+                        k[(a * dim) * nd + b * dim + j] += w * l * na * db[j];
+                        k[(a * dim + j) * nd + b * dim] += w * l * nb * da[j];
+                    }
+                }
+            }
+        }
+    }
+    // Symmetrize: copy the lower node blocks to the upper ones.
+    for a in 0..nno {
+        for b in 0..a {
+            for i in 0..dim {
+                for j in 0..dim {
+                    k[(b * dim + j) * nd + a * dim + i] = k[(a * dim + i) * nd + b * dim + j];
+                }
+            }
+        }
+    }
+    Ok(k)
+}
+
+/// The B matrix rows of node `a` at a Gauss point (engineering shear):
+/// `b[c][i]` = contribution of displacement component `i` of node `a` to
+/// strain component `c`.
+fn b_node(m: Modelisation, g: &GaussGeom, a: usize) -> [[f64; 3]; 6] {
+    let d = g.dn[a];
+    let mut b = [[0.0; 3]; 6];
+    b[0][0] = d[0];
+    b[1][1] = d[1];
+    b[3][0] = d[1];
+    b[3][1] = d[0];
+    match m {
+        Modelisation::ThreeD => {
+            b[2][2] = d[2];
+            b[4][0] = d[2];
+            b[4][2] = d[0];
+            b[5][1] = d[2];
+            b[5][2] = d[1];
+        }
+        Modelisation::Axis => b[2][0] = g.n[a] / g.x[0],
+        _ => {}
+    }
+    b
+}
+
+/// Reference implementation of [`stiffness`] by explicit `Bᵀ D B` products
+/// (slower; used to cross-check the fast formula).
+pub fn stiffness_btdb(
+    m: Modelisation,
+    mat: &IsoElastic,
+    t: CellType,
+    coords: &[[f64; 3]],
+) -> Result<Vec<f64>, ElementError> {
+    let rule = rigi_rule(t);
+    let gg = gauss_geometry(m, t, coords, &rule)?;
+    let (dim, ns, nno) = (m.dim(), m.nsig(), t.nnodes());
+    let nd = nno * dim;
+    let d = mat.hooke(m);
+    let mut k = vec![0.0; nd * nd];
+    for g in &gg {
+        let bs: Vec<_> = (0..nno).map(|a| b_node(m, g, a)).collect();
+        for a in 0..nno {
+            for b in 0..nno {
+                for i in 0..dim {
+                    for j in 0..dim {
+                        let mut s = 0.0;
+                        for p in 0..ns {
+                            for q in 0..ns {
+                                s += bs[a][p][i] * d[p][q] * bs[b][q][j];
+                            }
+                        }
+                        k[(a * dim + i) * nd + b * dim + j] += g.w * s;
+                    }
+                }
+            }
+        }
+    }
+    Ok(k)
+}
+
+// ---------------------------------------------------------------------------
+// Strains and stresses
+// ---------------------------------------------------------------------------
+
+/// Strains and stresses at the Gauss points of a cell (`EPSI_ELGA`,
+/// `SIEF_ELGA`), components in Code_Aster's order (first `nsig` entries).
+#[derive(Debug, Clone, PartialEq)]
+pub struct GaussFields {
+    /// Real coordinates of the Gauss points.
+    pub points: Vec<[f64; 3]>,
+    /// Tensorial strains (`EPXY = γ/2`).
+    pub eps: Vec<[f64; 6]>,
+    pub sig: Vec<[f64; 6]>,
+}
+
+/// Strain (tensorial shear) of a given displacement at one Gauss point.
+fn strain_at(m: Modelisation, mat: &IsoElastic, g: &GaussGeom, nno: usize, u: &[f64]) -> [f64; 6] {
+    let dim = m.dim();
+    let mut e = [0.0; 6];
+    for a in 0..nno {
+        let b = b_node(m, g, a);
+        for (c, row) in b.iter().enumerate().take(m.nsig()) {
+            for i in 0..dim {
+                e[c] += row[i] * u[a * dim + i];
+            }
+        }
+    }
+    for v in e.iter_mut().skip(3) {
+        *v *= 0.5;
+    }
+    if m == Modelisation::CPlan {
+        e[2] = -mat.nu / (1.0 - mat.nu) * (e[0] + e[1]);
+    }
+    e
+}
+
+/// Stress from a tensorial strain (for C_PLAN the εzz entry is ignored and
+/// σzz = 0).
+pub fn stress_from_strain(m: Modelisation, mat: &IsoElastic, eps: &[f64; 6]) -> [f64; 6] {
+    let d = mat.hooke(m);
+    let ns = m.nsig();
+    let mut eng = *eps;
+    for v in eng.iter_mut().skip(3) {
+        *v *= 2.0;
+    }
+    if m == Modelisation::CPlan {
+        eng[2] = 0.0;
+    }
+    let mut s = [0.0; 6];
+    for p in 0..ns {
+        s[p] = (0..ns).map(|q| d[p][q] * eng[q]).sum();
+    }
+    s
+}
+
+/// Strains and stresses at the `RIGI` Gauss points for the element
+/// displacement `u` (node by node).
+pub fn gauss_fields(
+    m: Modelisation,
+    mat: &IsoElastic,
+    t: CellType,
+    coords: &[[f64; 3]],
+    u: &[f64],
+) -> Result<GaussFields, ElementError> {
+    let rule = rigi_rule(t);
+    let gg = gauss_geometry(m, t, coords, &rule)?;
+    let nno = t.nnodes();
+    assert_eq!(u.len(), nno * m.dim());
+    let mut out = GaussFields { points: vec![], eps: vec![], sig: vec![] };
+    for g in &gg {
+        let e = strain_at(m, mat, g, nno, u);
+        out.points.push(g.x);
+        out.sig.push(stress_from_strain(m, mat, &e));
+        out.eps.push(e);
+    }
+    Ok(out)
+}
+
+/// The vertex (linear) cell type of `t` (QUAD4 for QUAD8, ...).
+pub fn vertex_type(t: CellType) -> CellType {
+    use CellType::*;
+    match t {
+        Seg3 => Seg2,
+        Tria6 => Tria3,
+        Quad8 | Quad9 => Quad4,
+        Tetra10 => Tetra4,
+        Penta15 => Penta6,
+        Pyram13 => Pyram5,
+        Hexa20 | Hexa27 => Hexa8,
+        other => other,
+    }
+}
+
+/// Code_Aster's Gauss → node extrapolation matrix of `rule` on `t`:
+/// `m[node][gauss]` (see the module documentation).
+pub fn gauss_to_node_matrix(t: CellType, rule: &QuadratureRule) -> Vec<Vec<f64>> {
+    let nno = t.nnodes();
+    let npg = rule.len();
+    if npg == 1 {
+        return vec![vec![1.0]; nno];
+    }
+    let tv = vertex_type(t);
+    let nnos = tv.nnodes();
+    // Least squares: (Σ_g N Nᵀ)⁻¹ [N(ξ_g)]_g.
+    let p: Vec<Vec<f64>> = rule.points.iter().map(|xi| shape(tv, xi)).collect();
+    let mut mm = vec![vec![0.0; nnos]; nnos];
+    for pg in &p {
+        for i in 0..nnos {
+            for j in 0..nnos {
+                mm[i][j] += pg[i] * pg[j];
+            }
+        }
+    }
+    // rhs columns: P (nnos × npg)
+    let mut rhs: Vec<Vec<f64>> = (0..nnos).map(|i| p.iter().map(|pg| pg[i]).collect()).collect();
+    // Gauss-Jordan with partial pivoting.
+    for c in 0..nnos {
+        let piv = (c..nnos).max_by(|&a, &b| mm[a][c].abs().total_cmp(&mm[b][c].abs())).unwrap();
+        mm.swap(c, piv);
+        rhs.swap(c, piv);
+        let d = mm[c][c];
+        for j in 0..nnos {
+            mm[c][j] /= d;
+        }
+        for v in rhs[c].iter_mut() {
+            *v /= d;
+        }
+        for r in 0..nnos {
+            if r != c {
+                let f = mm[r][c];
+                if f != 0.0 {
+                    for j in 0..nnos {
+                        mm[r][j] -= f * mm[c][j];
+                    }
+                    for g in 0..npg {
+                        rhs[r][g] -= f * rhs[c][g];
+                    }
+                }
+            }
+        }
+    }
+    // Other nodes: linear (vertex-element) interpolation of vertex values.
+    let nodes = node_coords(t);
+    let mut out = rhs.clone();
+    for node in nodes.iter().take(nno).skip(nnos) {
+        let w = shape(tv, node);
+        let row: Vec<f64> = (0..npg).map(|g| (0..nnos).map(|s| w[s] * rhs[s][g]).sum()).collect();
+        out.push(row);
+    }
+    out
+}
+
+/// Extrapolate Gauss-point values (first `ncmp` components) of a cell to its
+/// nodes, Code_Aster's way (`*_ELNO` from `*_ELGA` on the `RIGI` family).
+pub fn gauss_to_nodes(t: CellType, values: &[[f64; 6]], ncmp: usize) -> Vec<[f64; 6]> {
+    let rule = rigi_rule(t);
+    assert_eq!(values.len(), rule.len());
+    let m = gauss_to_node_matrix(t, &rule);
+    m.iter()
+        .map(|row| {
+            let mut v = [0.0; 6];
+            for (w, g) in row.iter().zip(values) {
+                for c in 0..ncmp {
+                    v[c] += w * g[c];
+                }
+            }
+            v
+        })
+        .collect()
+}
+
+/// `SIGM_ELNO` and `EPSI_ELNO` of a cell: (strains, stresses) at its nodes.
+pub fn node_fields(
+    m: Modelisation,
+    mat: &IsoElastic,
+    t: CellType,
+    coords: &[[f64; 3]],
+    u: &[f64],
+) -> Result<(Vec<[f64; 6]>, Vec<[f64; 6]>), ElementError> {
+    let g = gauss_fields(m, mat, t, coords, u)?;
+    Ok((gauss_to_nodes(t, &g.eps, m.nsig()), gauss_to_nodes(t, &g.sig, m.nsig())))
+}
+
+// ---------------------------------------------------------------------------
+// Loads
+// ---------------------------------------------------------------------------
+
+/// Nodal forces of a body force density `f(x)` (force per unit volume) on a
+/// volume cell: `F_a = ∫ N_a f` (× r in AXIS), on the `RIGI` rule. Gravity
+/// (`PESANTEUR`) is `f = ρ g d` with `d` the unit direction.
+pub fn body_force(
+    m: Modelisation,
+    t: CellType,
+    coords: &[[f64; 3]],
+    f: &dyn Fn(&[f64; 3]) -> [f64; 3],
+) -> Result<Vec<f64>, ElementError> {
+    let rule = rigi_rule(t);
+    let gg = gauss_geometry(m, t, coords, &rule)?;
+    let (dim, nno) = (m.dim(), t.nnodes());
+    let mut v = vec![0.0; nno * dim];
+    for g in &gg {
+        let fx = f(&g.x);
+        for a in 0..nno {
+            for i in 0..dim {
+                v[a * dim + i] += g.w * g.n[a] * fx[i];
+            }
+        }
+    }
+    Ok(v)
+}
+
+/// Geometry of a boundary cell at one Gauss point.
+#[derive(Debug, Clone)]
+pub struct BoundaryPoint {
+    /// Weight × length / area element (× r in AXIS).
+    pub w: f64,
+    pub x: [f64; 3],
+    /// Unit normal in Code_Aster's convention (see the module documentation).
+    pub normal: [f64; 3],
+    pub n: Vec<f64>,
+}
+
+/// Gauss points of a boundary (skin) cell: SEG2/SEG3 in 2D (`dim = 2`),
+/// TRIA3/6, QUAD4/8/9 in 3D.
+pub fn boundary_points(
+    m: Modelisation,
+    t: CellType,
+    coords: &[[f64; 3]],
+) -> Result<Vec<BoundaryPoint>, ElementError> {
+    if !m.accepts_boundary_cell(t) {
+        return Err(ElementError::WrongCellType { cell_type: t, modelisation: m });
+    }
+    let rule = boundary_rule(t);
+    let nno = t.nnodes();
+    let mut n = [0.0; MAX_NODES];
+    let mut dref = [[0.0; 3]; MAX_NODES];
+    let mut out = Vec::with_capacity(rule.len());
+    for (gp, (xi, w)) in rule.points.iter().zip(&rule.weights).enumerate() {
+        shape_and_deriv(t, xi, &mut n[..nno], &mut dref[..nno]);
+        let mut x = [0.0; 3];
+        let mut t1 = [0.0; 3];
+        let mut t2 = [0.0; 3];
+        for a in 0..nno {
+            for i in 0..3 {
+                x[i] += n[a] * coords[a][i];
+                t1[i] += dref[a][0] * coords[a][i];
+                t2[i] += dref[a][1] * coords[a][i];
+            }
+        }
+        let (jac, normal) = if t.dim() == 1 {
+            let l = (t1[0] * t1[0] + t1[1] * t1[1]).sqrt();
+            (l, [t1[1] / l, -t1[0] / l, 0.0])
+        } else {
+            let c = [t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]];
+            let l = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+            (l, [c[0] / l, c[1] / l, c[2] / l])
+        };
+        if jac.is_nan() || jac <= 0.0 {
+            return Err(ElementError::BadJacobian { cell_type: t, gauss_point: gp, det: jac });
+        }
+        let mut wd = w * jac;
+        if m == Modelisation::Axis {
+            wd *= x[0];
+        }
+        out.push(BoundaryPoint { w: wd, x, normal, n: n[..nno].to_vec() });
+    }
+    Ok(out)
+}
+
+/// Nodal forces of a surface traction `f(x, normal)` (force per unit length
+/// in 2D / area in 3D) on a boundary cell: `FORCE_CONTOUR`, `FORCE_FACE`.
+pub fn boundary_force(
+    m: Modelisation,
+    t: CellType,
+    coords: &[[f64; 3]],
+    f: &dyn Fn(&[f64; 3], &[f64; 3]) -> [f64; 3],
+) -> Result<Vec<f64>, ElementError> {
+    let pts = boundary_points(m, t, coords)?;
+    let (dim, nno) = (m.dim(), t.nnodes());
+    let mut v = vec![0.0; nno * dim];
+    for p in &pts {
+        let fx = f(&p.x, &p.normal);
+        for a in 0..nno {
+            for i in 0..dim {
+                v[a * dim + i] += p.w * p.n[a] * fx[i];
+            }
+        }
+    }
+    Ok(v)
+}
+
+/// Nodal forces of a pressure (`PRES_REP`) given by its values at the cell's
+/// nodes (interpolated to the Gauss points), with an optional 2D shear
+/// `CISA` (nodal values too): traction `-p n + c t`.
+pub fn pressure_force(
+    m: Modelisation,
+    t: CellType,
+    coords: &[[f64; 3]],
+    pres: &[f64],
+    cisa: Option<&[f64]>,
+) -> Result<Vec<f64>, ElementError> {
+    let pts = boundary_points(m, t, coords)?;
+    let (dim, nno) = (m.dim(), t.nnodes());
+    assert_eq!(pres.len(), nno);
+    let mut v = vec![0.0; nno * dim];
+    for pt in &pts {
+        let p: f64 = pt.n.iter().zip(pres).map(|(a, b)| a * b).sum();
+        let c: f64 = cisa.map(|c| pt.n.iter().zip(c).map(|(a, b)| a * b).sum()).unwrap_or(0.0);
+        let nr = pt.normal;
+        let tr = [-nr[0] * p - nr[1] * c, -nr[1] * p + nr[0] * c, -nr[2] * p];
+        for a in 0..nno {
+            for i in 0..dim {
+                v[a * dim + i] += pt.w * pt.n[a] * tr[i];
+            }
+        }
+    }
+    Ok(v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ref_coords(t: CellType, scale: f64) -> Vec<[f64; 3]> {
+        // A distorted copy of the reference element, moved to x ≥ 1 (AXIS).
+        node_coords(t)
+            .iter()
+            .map(|p| {
+                let (x, y, z) = (p[0], p[1], p[2]);
+                [2.0 + scale * (x + 0.1 * y + 0.05 * x * y), 0.5 + scale * (y - 0.07 * x + 0.02 * z), z + 0.03 * x * y]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn hooke_matrices() {
+        let mat = IsoElastic::new(200e9, 0.3);
+        let (l, mu) = mat.lame();
+        assert!((mu - 200e9 / 2.6).abs() < 1e-3);
+        assert!((l - 200e9 * 0.3 / (1.3 * 0.4)).abs() < 1e-3);
+        let d = mat.hooke(Modelisation::DPlan);
+        assert_eq!(d[2][0], l);
+        assert_eq!(d[3][3], mu);
+        let c = mat.hooke(Modelisation::CPlan);
+        assert!((c[0][0] - 200e9 / 0.91).abs() < 1e-2);
+        assert_eq!(c[2][2], 0.0);
+        let d3 = mat.hooke(Modelisation::ThreeD);
+        assert_eq!(d3[5][5], mu);
+        assert_eq!(d3[0][0], l + 2.0 * mu);
+    }
+
+    fn cases() -> Vec<(Modelisation, CellType)> {
+        use CellType::*;
+        let mut v = vec![];
+        for t in [Tria3, Tria6, Quad4, Quad8, Quad9] {
+            for m in [Modelisation::DPlan, Modelisation::CPlan, Modelisation::Axis] {
+                v.push((m, t));
+            }
+        }
+        for t in [Tetra4, Tetra10, Penta6, Penta15, Pyram5, Pyram13, Hexa8, Hexa20, Hexa27] {
+            v.push((Modelisation::ThreeD, t));
+        }
+        v
+    }
+
+    #[test]
+    fn stiffness_symmetric_matches_btdb_and_rigid_modes() {
+        let mat = IsoElastic::new(1000.0, 0.27);
+        for (m, t) in cases() {
+            let c = ref_coords(t, 1.3);
+            let k = stiffness(m, &mat, t, &c).unwrap();
+            let k2 = stiffness_btdb(m, &mat, t, &c).unwrap();
+            let nd = t.nnodes() * m.dim();
+            let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            for i in 0..nd {
+                for j in 0..nd {
+                    assert!((k[i * nd + j] - k[j * nd + i]).abs() < 1e-12 * kmax, "{m:?} {t:?} sym");
+                    assert!((k[i * nd + j] - k2[i * nd + j]).abs() < 1e-11 * kmax, "{m:?} {t:?} btdb");
+                }
+            }
+            // Rigid-body modes: translations (not radial in AXIS), rotations.
+            let dim = m.dim();
+            let mut modes: Vec<Vec<f64>> = vec![];
+            for i in 0..dim {
+                if m == Modelisation::Axis && i == 0 {
+                    continue;
+                }
+                modes.push((0..nd).map(|q| if q % dim == i { 1.0 } else { 0.0 }).collect());
+            }
+            if m != Modelisation::Axis {
+                let rots: &[(usize, usize)] = if dim == 2 { &[(0, 1)] } else { &[(0, 1), (0, 2), (1, 2)] };
+                for &(p, q) in rots {
+                    let mut u = vec![0.0; nd];
+                    for (a, x) in c.iter().enumerate() {
+                        u[a * dim + p] = -x[q];
+                        u[a * dim + q] = x[p];
+                    }
+                    modes.push(u);
+                }
+            }
+            for u in modes {
+                for i in 0..nd {
+                    let r: f64 = (0..nd).map(|j| k[i * nd + j] * u[j]).sum();
+                    assert!(r.abs() < 1e-10 * kmax, "{m:?} {t:?} rigid mode residual {r}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn extrapolation_reproduces_linear_fields() {
+        for (m, t) in cases() {
+            let rule = rigi_rule(t);
+            let mm = gauss_to_node_matrix(t, &rule);
+            // Rows sum to one (constants are reproduced).
+            for row in &mm {
+                let s: f64 = row.iter().sum();
+                assert!((s - 1.0).abs() < 1e-12, "{m:?} {t:?}");
+            }
+            assert_eq!(mm.len(), t.nnodes());
+        }
+    }
+
+    #[test]
+    fn pressure_on_unit_segment_and_face() {
+        // Segment from (0,0) to (1,0): n = (0,-1); pressure 2 → force +2 along y.
+        let c = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]];
+        let f = pressure_force(Modelisation::DPlan, CellType::Seg2, &c, &[2.0, 2.0], None).unwrap();
+        assert!((f[1] - 1.0).abs() < 1e-14 && (f[3] - 1.0).abs() < 1e-14 && f[0].abs() < 1e-14);
+        // Counter-clockwise unit square face in z = 0: n = +z, force -p z.
+        let q = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+        let f = pressure_force(Modelisation::ThreeD, CellType::Quad4, &q, &[3.0; 4], None).unwrap();
+        let fz: f64 = (0..4).map(|a| f[3 * a + 2]).sum();
+        assert!((fz + 3.0).abs() < 1e-13);
+    }
+}

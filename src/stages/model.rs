@@ -1,0 +1,347 @@
+//! AFFE_MODELE, DEFI_MATERIAU, AFFE_MATERIAU and AFFE_CHAR_MECA(_F): the data
+//! a mechanical computation is built from. Nothing is computed here; mesh
+//! entities are resolved and checked, so that errors name the keyword.
+
+use super::mesh::mesh_of;
+use super::Ctx;
+use crate::catalog::args::{ArgValue, Args, Val};
+use crate::concepts::model::{
+    modelisation_dim, role_of, Element, Load, LoadItem, LoadValue, MatValue, Material, MaterialField, Model,
+};
+use crate::concepts::{ConceptData, ConceptRef};
+use crate::diag::{Error, Result};
+use crate::mesh::Mesh;
+use std::collections::{BTreeMap, HashMap};
+use std::rc::Rc;
+
+/// Fail loudly on keywords the stage does not implement.
+fn refuse(a: &Args, names: &[&str]) -> Result<()> {
+    for n in names {
+        if a.given(n) {
+            return Err(a.err(n, "not supported yet"));
+        }
+    }
+    Ok(())
+}
+
+/// Cells selected by TOUT / GROUP_MA / MAILLE (and SANS_GROUP_MA) of an occurrence.
+pub fn select_cells(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
+    let mut cells: Vec<usize> = Vec::new();
+    if occ.text("TOUT") == Some("OUI") {
+        cells.extend(0..mesh.cells.len());
+    }
+    for g in occ.texts("GROUP_MA") {
+        let members = mesh
+            .cell_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("GROUP_MA", format!("group of cells '{g}' is not in mesh {mesh_name}")))?;
+        cells.extend(members.iter().copied());
+    }
+    let names = occ.texts("MAILLE");
+    if !names.is_empty() {
+        let index: HashMap<&str, usize> = mesh.cell_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+        for n in names {
+            cells.push(
+                *index
+                    .get(n.as_str())
+                    .ok_or_else(|| occ.err("MAILLE", format!("cell '{n}' is not in mesh {mesh_name}")))?,
+            );
+        }
+    }
+    for g in occ.texts("SANS_GROUP_MA") {
+        let members = mesh
+            .cell_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("SANS_GROUP_MA", format!("group of cells '{g}' is not in mesh {mesh_name}")))?;
+        cells.retain(|c| !members.contains(c));
+    }
+    cells.sort_unstable();
+    cells.dedup();
+    Ok(cells)
+}
+
+/// Nodes selected by TOUT / GROUP_MA / MAILLE / GROUP_NO / NOEUD (and SANS_GROUP_NO).
+pub fn select_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
+    let mut nodes: Vec<usize> = Vec::new();
+    if occ.has("TOUT") || occ.has("GROUP_MA") || occ.has("MAILLE") {
+        for c in select_cells(mesh, occ, mesh_name)? {
+            nodes.extend(mesh.cells[c].iter().copied());
+        }
+    }
+    for g in occ.texts("GROUP_NO") {
+        let members = mesh
+            .node_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {mesh_name}")))?;
+        nodes.extend(members.iter().copied());
+    }
+    let names = occ.texts("NOEUD");
+    if !names.is_empty() {
+        let index: HashMap<&str, usize> = mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+        for n in names {
+            nodes.push(
+                *index
+                    .get(n.as_str())
+                    .ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {mesh_name}")))?,
+            );
+        }
+    }
+    for g in occ.texts("SANS_GROUP_NO") {
+        let members = mesh
+            .node_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("SANS_GROUP_NO", format!("group of nodes '{g}' is not in mesh {mesh_name}")))?;
+        nodes.retain(|n| !members.contains(n));
+    }
+    nodes.sort_unstable();
+    nodes.dedup();
+    Ok(nodes)
+}
+
+/// The model behind a concept.
+pub fn model_of(c: &ConceptRef) -> Result<std::cell::Ref<'_, Model>> {
+    std::cell::Ref::filter_map(c.data(), |d| if let ConceptData::Model(m) = d { Some(m) } else { None })
+        .map_err(|_| Error::runtime(format!("{} ({}) holds no model", c.label(), c.kind())))
+}
+
+// ------------------------------------------------------------------ AFFE_MODELE
+
+pub fn affe_modele(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    refuse(a, &["AFFE_SOUS_STRUC", "GRANDEUR_CARA"])?;
+    let mc = a.req_concept("MAILLAGE")?;
+    let mesh = mesh_of(&mc)?;
+    let name = mc.label();
+    let mut elements: Vec<Option<crate::concepts::model::Element>> = vec![None; mesh.cells.len()];
+    for occ in a.facts("AFFE") {
+        let phen = occ.req_text("PHENOMENE")?;
+        if phen != "MECANIQUE" {
+            return Err(occ.err("PHENOMENE", format!("PHENOMENE='{phen}' is not supported yet")));
+        }
+        let modelisation = occ.req_text("MODELISATION")?;
+        let Some(dim) = modelisation_dim(modelisation) else {
+            return Err(occ.err("MODELISATION", format!("MODELISATION='{modelisation}' is not supported yet")));
+        };
+        if occ.given("FORMULATION") {
+            return Err(occ.err("FORMULATION", "not supported yet"));
+        }
+        let cells = select_cells(&mesh, occ, &name)?;
+        let mut placed = 0;
+        for c in cells {
+            if let Some(role) = role_of(dim, mesh.cell_types[c]) {
+                elements[c] = Some(Element { phenomenon: phen.into(), modelisation: modelisation.into(), role });
+                placed += 1;
+            }
+        }
+        if placed == 0 {
+            return Err(occ.err(
+                "MODELISATION",
+                format!("no cell of the selection can carry a {modelisation} element (check the cell types)"),
+            ));
+        }
+    }
+    let mut counts: BTreeMap<(String, &str), usize> = BTreeMap::new();
+    for (c, e) in elements.iter().enumerate() {
+        if let Some(e) = e {
+            *counts.entry((e.modelisation.clone(), mesh.cell_types[c].name())).or_default() += 1;
+        }
+    }
+    let mut text = String::from("  model elements (modelisation, cell type, count):\n");
+    for ((m, t), n) in counts {
+        text.push_str(&format!("    {m:<12} {t:<8} {n:>8}\n"));
+    }
+    ctx.io.mess(&text);
+    Ok(Some(ConceptData::Model(Model { mesh, mesh_concept: mc, elements })))
+}
+
+// ------------------------------------------------------------------ DEFI_MATERIAU
+
+pub fn defi_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    refuse(a, &["MATER", "TABLE"])?;
+    let mut m = Material::default();
+    for item in &a.items {
+        match &item.value {
+            ArgValue::Factor(occs) => {
+                let occ = &occs[0];
+                let mut params = BTreeMap::new();
+                for p in &occ.items {
+                    let v = match occ.val(&p.name) {
+                        Some(Val::R(r)) => MatValue::Real(*r),
+                        Some(Val::I(i)) => MatValue::Real(*i as f64),
+                        Some(Val::T(t)) => MatValue::Text(t.clone()),
+                        Some(Val::Concept(c)) => MatValue::Func(c.clone()),
+                        _ => continue,
+                    };
+                    params.insert(p.name.clone(), v);
+                }
+                m.behaviours.insert(item.name.clone(), params);
+            }
+            ArgValue::Simple(v) => {
+                if let Some(Val::T(t)) = v.first() {
+                    m.options.insert(item.name.clone(), t.clone());
+                }
+            }
+        }
+    }
+    Ok(Some(ConceptData::Material(Rc::new(m))))
+}
+
+// ------------------------------------------------------------------ AFFE_MATERIAU
+
+pub fn affe_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    refuse(a, &["AFFE_VARC"])?;
+    let (mesh, name) = match (a.concept("MAILLAGE"), a.concept("MODELE")) {
+        (Some(mc), _) => (mesh_of(&mc)?, mc.label()),
+        (None, Some(mo)) => {
+            let m = model_of(&mo)?;
+            (m.mesh.clone(), m.mesh_concept.label())
+        }
+        (None, None) => return Err(a.err("MAILLAGE", "MAILLAGE or MODELE is required")),
+    };
+    let mut cells = vec![None; mesh.cells.len()];
+    for occ in a.facts("AFFE") {
+        let maters = occ.concepts("MATER");
+        if maters.len() > 1 {
+            return Err(occ.err("MATER", "several materials on the same cells are not supported yet"));
+        }
+        for c in select_cells(&mesh, occ, &name)? {
+            cells[c] = Some(maters[0].clone());
+        }
+    }
+    Ok(Some(ConceptData::MaterialField(MaterialField { mesh, cells })))
+}
+
+// ------------------------------------------------------------------ AFFE_CHAR_MECA(_F)
+
+/// Load keywords we implement; any other factor keyword given is refused.
+const LOAD_KEYWORDS: &[&str] =
+    &["DDL_IMPO", "FORCE_NODALE", "FORCE_CONTOUR", "FORCE_FACE", "PRES_REP", "PESANTEUR", "LIAISON_DDL"];
+const PLAIN_KEYWORDS: &[&str] = &["MODELE", "INFO", "VERI_AFFE", "VERI_NORM", "DOUBLE_LAGRANGE", "CHAM_MATER"];
+/// Keywords of DDL_IMPO / FORCE_* that select entities rather than give values.
+const SELECTORS: &[&str] = &["TOUT", "NOEUD", "GROUP_NO", "GROUP_MA", "MAILLE", "SANS_GROUP_MA", "SANS_GROUP_NO"];
+
+fn load_value(v: &Val) -> Option<LoadValue> {
+    match v {
+        Val::R(r) => Some(LoadValue::Real(*r)),
+        Val::I(i) => Some(LoadValue::Real(*i as f64)),
+        Val::Concept(c) => Some(LoadValue::Func(c.clone())),
+        _ => None,
+    }
+}
+
+/// The (component, value) pairs written in an occurrence, in schema order.
+fn components(occ: &Args, skip: &[&str]) -> Vec<(String, LoadValue)> {
+    occ.items
+        .iter()
+        .filter(|i| !SELECTORS.contains(&i.name.as_str()) && !skip.contains(&i.name.as_str()) && !i.defaulted)
+        .filter_map(|i| occ.val(&i.name).and_then(load_value).map(|v| (i.name.clone(), v)))
+        .collect()
+}
+
+fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
+    for item in &a.items {
+        let n = item.name.as_str();
+        if !item.defaulted && !LOAD_KEYWORDS.contains(&n) && !PLAIN_KEYWORDS.contains(&n) {
+            return Err(a.err(n, "not supported yet"));
+        }
+    }
+    let mo = a.req_concept("MODELE")?;
+    let (mesh, name) = {
+        let m = model_of(&mo)?;
+        (m.mesh.clone(), m.mesh_concept.label())
+    };
+    let mut items = Vec::new();
+    for occ in a.facts("DDL_IMPO") {
+        for k in ["BLOCAGE", "LIAISON"] {
+            if occ.given(k) {
+                return Err(occ.err(k, "not supported yet"));
+            }
+        }
+        let comps = components(occ, &[]);
+        if comps.is_empty() {
+            return Err(occ.err("DDL_IMPO", "no component is prescribed"));
+        }
+        for node in select_nodes(&mesh, occ, &name)? {
+            for (c, v) in &comps {
+                items.push(LoadItem::Dof { node, component: c.clone(), value: v.clone() });
+            }
+        }
+    }
+    for occ in a.facts("FORCE_NODALE") {
+        let comps = components(occ, &[]);
+        for node in select_nodes(&mesh, occ, &name)? {
+            for (c, v) in &comps {
+                items.push(LoadItem::NodalForce { node, component: c.clone(), value: v.clone() });
+            }
+        }
+    }
+    for kw in ["FORCE_CONTOUR", "FORCE_FACE"] {
+        for occ in a.facts(kw) {
+            let cells = select_cells(&mesh, occ, &name)?;
+            let comps = components(occ, &[]);
+            if comps.iter().any(|(c, _)| !matches!(c.as_str(), "FX" | "FY" | "FZ")) {
+                let bad: Vec<&str> =
+                    comps.iter().map(|(c, _)| c.as_str()).filter(|c| !matches!(*c, "FX" | "FY" | "FZ")).collect();
+                return Err(occ.err(bad[0], "not supported yet"));
+            }
+            items.push(LoadItem::SurfaceForce { cells, components: comps });
+        }
+    }
+    for occ in a.facts("PRES_REP") {
+        for k in ["FISSURE", "CISA_2D"] {
+            if occ.given(k) {
+                return Err(occ.err(k, "not supported yet"));
+            }
+        }
+        let cells = select_cells(&mesh, occ, &name)?;
+        let value = occ.val("PRES").and_then(load_value).ok_or_else(|| occ.err("PRES", "PRES is required"))?;
+        items.push(LoadItem::Pressure { cells, value });
+    }
+    if let Some(occ) = a.fact("PESANTEUR") {
+        let d = occ.reals("DIRECTION");
+        let cells = if occ.has("GROUP_MA") { Some(select_cells(&mesh, occ, &name)?) } else { None };
+        items.push(LoadItem::Gravity { g: occ.req_real("GRAVITE")?, direction: [d[0], d[1], d[2]], cells });
+    }
+    for occ in a.facts("LIAISON_DDL") {
+        let mut nodes = Vec::new();
+        let index: HashMap<&str, usize> = mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+        for n in occ.texts("NOEUD") {
+            nodes.push(
+                *index.get(n.as_str()).ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {name}")))?,
+            );
+        }
+        for g in occ.texts("GROUP_NO") {
+            let m = mesh
+                .node_groups
+                .get(&g)
+                .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {name}")))?;
+            if m.len() != 1 {
+                return Err(occ.err(
+                    "GROUP_NO",
+                    format!("group '{g}' holds {} nodes; LIAISON_DDL needs one node per group", m.len()),
+                ));
+            }
+            nodes.push(m[0]);
+        }
+        let ddl = occ.texts("DDL");
+        let coef = occ.reals("COEF_MULT");
+        if nodes.len() != ddl.len() || ddl.len() != coef.len() {
+            return Err(occ.err(
+                "COEF_MULT",
+                format!("{} nodes, {} DDL and {} COEF_MULT: they must match", nodes.len(), ddl.len(), coef.len()),
+            ));
+        }
+        let value =
+            occ.val("COEF_IMPO").and_then(load_value).ok_or_else(|| occ.err("COEF_IMPO", "COEF_IMPO is required"))?;
+        let terms = nodes.into_iter().zip(ddl).zip(coef).map(|((n, d), c)| (n, d, c)).collect();
+        items.push(LoadItem::Relation { terms, value });
+    }
+    Ok(Some(ConceptData::Load(Load { model: mo, items, functional })))
+}
+
+pub fn affe_char_meca(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    affe_char(a, false)
+}
+
+pub fn affe_char_meca_f(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    affe_char(a, true)
+}

@@ -1,0 +1,352 @@
+//! TEST_RESU (RESU) and POST_RELEVE_T (EXTRACTION): reading values out of
+//! results.
+
+use super::verdict::{check, Scalar};
+use super::Ctx;
+use crate::catalog::args::Args;
+use crate::concepts::result::{Field, ResultData, Step};
+use crate::concepts::table::{Cell, ColType, Table};
+use crate::concepts::{ConceptData, ConceptRef};
+use crate::diag::{Error, Result};
+use crate::mesh::Mesh;
+use std::cell::Ref;
+use std::rc::Rc;
+
+/// The result behind a concept.
+pub fn result_of(c: &ConceptRef) -> Result<Ref<'_, ResultData>> {
+    Ref::filter_map(c.data(), |d| if let ConceptData::Result(r) = d { Some(r) } else { None })
+        .map_err(|_| Error::runtime(format!("{} ({}) holds no result", c.label(), c.kind())))
+}
+
+fn mesh_of_result(r: &ResultData) -> Result<Rc<Mesh>> {
+    Ok(super::model::model_of(&r.model)?.mesh.clone())
+}
+
+/// The step an occurrence designates (NUME_ORDRE or INST; the only step otherwise).
+fn step_of<'r>(r: &'r ResultData, occ: &Args, name: &str) -> Result<&'r Step> {
+    if let Some(n) = occ.ints("NUME_ORDRE").first() {
+        return r.by_order(*n).ok_or_else(|| occ.err("NUME_ORDRE", format!("result {name} has no order number {n}")));
+    }
+    if let Some(t) = occ.reals("INST").first() {
+        let prec = occ.real("PRECISION").filter(|_| occ.text("CRITERE") == Some("RELATIF")).unwrap_or(1e-6);
+        return r.by_inst(*t, prec).ok_or_else(|| occ.err("INST", format!("result {name} has no step at time {t}")));
+    }
+    match r.steps.as_slice() {
+        [one] => Ok(one),
+        [] => Err(occ.err("RESULTAT", format!("result {name} holds no step"))),
+        _ => r.steps.last().ok_or_else(|| occ.err("RESULTAT", "no step")),
+    }
+}
+
+fn one_node(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Option<usize>> {
+    if let Some(n) = occ.text("NOEUD") {
+        return mesh
+            .node_names
+            .iter()
+            .position(|x| x == n)
+            .map(Some)
+            .ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {mesh_name}")));
+    }
+    if let Some(g) = occ.text("GROUP_NO") {
+        let m = mesh
+            .node_groups
+            .get(g)
+            .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {mesh_name}")))?;
+        if m.len() != 1 {
+            return Err(occ.err("GROUP_NO", format!("group '{g}' holds {} nodes; the test needs exactly one", m.len())));
+        }
+        return Ok(Some(m[0]));
+    }
+    Ok(None)
+}
+
+fn one_cell(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Option<usize>> {
+    if let Some(n) = occ.text("MAILLE") {
+        return mesh
+            .cell_names
+            .iter()
+            .position(|x| x == n)
+            .map(Some)
+            .ok_or_else(|| occ.err("MAILLE", format!("cell '{n}' is not in mesh {mesh_name}")));
+    }
+    if let Some(g) = occ.text("GROUP_MA") {
+        let m = mesh
+            .cell_groups
+            .get(g)
+            .ok_or_else(|| occ.err("GROUP_MA", format!("group of cells '{g}' is not in mesh {mesh_name}")))?;
+        if m.len() != 1 {
+            return Err(occ.err("GROUP_MA", format!("group '{g}' holds {} cells; the test needs exactly one", m.len())));
+        }
+        return Ok(Some(m[0]));
+    }
+    Ok(None)
+}
+
+/// The value of one component of a field at the place an occurrence names.
+fn locate(field: &Field, k: usize, mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<f64> {
+    let n = field.components().len();
+    let v = match field {
+        Field::Node { values, .. } => {
+            let node =
+                one_node(mesh, occ, mesh_name)?.ok_or_else(|| occ.err("NOEUD", "NOEUD or GROUP_NO is required"))?;
+            values[node * n + k]
+        }
+        Field::Elno { cells, .. } => {
+            let c =
+                one_cell(mesh, occ, mesh_name)?.ok_or_else(|| occ.err("MAILLE", "MAILLE or GROUP_MA is required"))?;
+            let node =
+                one_node(mesh, occ, mesh_name)?.ok_or_else(|| occ.err("NOEUD", "NOEUD or GROUP_NO is required"))?;
+            let i = mesh.cells[c].iter().position(|&x| x == node).ok_or_else(|| {
+                occ.err("NOEUD", format!("node {} is not a node of cell {}", mesh.node_names[node], mesh.cell_names[c]))
+            })?;
+            let vals = cells[c]
+                .as_ref()
+                .ok_or_else(|| occ.err("MAILLE", format!("the field has no value on cell {}", mesh.cell_names[c])))?;
+            vals[i * n + k]
+        }
+        Field::Elga { cells, .. } => {
+            let c =
+                one_cell(mesh, occ, mesh_name)?.ok_or_else(|| occ.err("MAILLE", "MAILLE or GROUP_MA is required"))?;
+            let p =
+                occ.int("POINT").ok_or_else(|| occ.err("POINT", "POINT is required for a field at Gauss points"))?;
+            if occ.given("SOUS_POINT") {
+                return Err(occ.err("SOUS_POINT", "not supported yet"));
+            }
+            let vals = cells[c]
+                .as_ref()
+                .ok_or_else(|| occ.err("MAILLE", format!("the field has no value on cell {}", mesh.cell_names[c])))?;
+            let npg = vals.len() / n;
+            if p < 1 || p as usize > npg {
+                return Err(occ
+                    .err("POINT", format!("cell {} has {npg} Gauss points, point {p} requested", mesh.cell_names[c])));
+            }
+            vals[(p as usize - 1) * n + k]
+        }
+        Field::Elem { cells, .. } => {
+            let c =
+                one_cell(mesh, occ, mesh_name)?.ok_or_else(|| occ.err("MAILLE", "MAILLE or GROUP_MA is required"))?;
+            let vals = cells[c]
+                .as_ref()
+                .ok_or_else(|| occ.err("MAILLE", format!("the field has no value on cell {}", mesh.cell_names[c])))?;
+            vals[k]
+        }
+    };
+    if v.is_nan() {
+        return Err(occ.err("NOM_CMP", "the field has no value of this component there"));
+    }
+    Ok(v)
+}
+
+pub fn test_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    for kw in ["CHAM_NO", "CHAM_ELEM", "CARTE", "MAILLAGE", "OBJET", "GENE"] {
+        if a.given(kw) {
+            return Err(a.err(kw, "not supported yet"));
+        }
+    }
+    for occ in a.facts("RESU") {
+        let rc = occ.req_concept("RESULTAT")?;
+        let name = rc.label();
+        let r = result_of(&rc)?;
+        let mesh = mesh_of_result(&r)?;
+        let mesh_name = super::model::model_of(&r.model)?.mesh_concept.label();
+        let step = step_of(&r, occ, &name)?;
+        if occ.given("NOM_VARI") || occ.given("PARA") {
+            return Err(occ.err(if occ.given("PARA") { "PARA" } else { "NOM_VARI" }, "not supported yet"));
+        }
+        let cham = occ.req_text("NOM_CHAM")?;
+        let field = step.fields.get(cham).ok_or_else(|| {
+            occ.err("NOM_CHAM", format!("result {name} has no field {cham} at order {}", step.nume_ordre))
+        })?;
+        let cmp = occ.req_text("NOM_CMP")?;
+        let k = field.component(cmp).ok_or_else(|| {
+            occ.err(
+                "NOM_CMP",
+                format!("field {cham} has no component {cmp} (components: {})", field.components().join(", ")),
+            )
+        })?;
+        let (value, where_) = match occ.text("TYPE_TEST") {
+            Some(tt) => {
+                let vals = field.all_values(k);
+                let v = match tt {
+                    "MAX" => vals.iter().cloned().fold(f64::MIN, f64::max),
+                    "MIN" => vals.iter().cloned().fold(f64::MAX, f64::min),
+                    "SOMM" => vals.iter().sum(),
+                    _ => vals.iter().map(|x| x.abs()).sum(),
+                };
+                (v, format!("TYPE_TEST {tt}"))
+            }
+            None => {
+                let v = locate(field, k, &mesh, occ, &mesh_name)?;
+                let mut w = Vec::new();
+                for kw in ["NOEUD", "GROUP_NO", "MAILLE", "GROUP_MA"] {
+                    if let Some(t) = occ.text(kw) {
+                        w.push(format!("{kw} {t}"));
+                    }
+                }
+                if let Some(p) = occ.int("POINT") {
+                    w.push(format!("POINT {p}"));
+                }
+                (v, w.join(" "))
+            }
+        };
+        let title = format!("RESULTAT {name} NUME_ORDRE {} NOM_CHAM {cham} NOM_CMP {cmp} {where_}", step.nume_ordre);
+        check(ctx, occ, Scalar::R(value), cmp, &title)?;
+    }
+    Ok(None)
+}
+
+// ------------------------------------------------------------------ POST_RELEVE_T
+
+pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    let mut t = Table::default();
+    let mut rows: Vec<Vec<(String, Cell)>> = Vec::new();
+    for occ in a.facts("ACTION") {
+        let ops = occ.texts("OPERATION");
+        if ops.iter().any(|o| o != "EXTRACTION") {
+            return Err(occ.err("OPERATION", format!("OPERATION='{}' is not supported yet", ops.join("', '"))));
+        }
+        for kw in [
+            "CHAM_GD",
+            "INVARIANT",
+            "ELEM_PRINCIPAUX",
+            "RESULTANTE",
+            "MOMENT",
+            "POINT",
+            "REPERE",
+            "LIST_ORDRE",
+            "LIST_INST",
+        ] {
+            if occ.given(kw) {
+                return Err(occ.err(kw, "not supported yet"));
+            }
+        }
+        let intitule = occ.req_text("INTITULE")?.to_string();
+        let rc = occ.req_concept("RESULTAT")?;
+        let name = rc.label();
+        let r = result_of(&rc)?;
+        let mesh = mesh_of_result(&r)?;
+        let mesh_name = super::model::model_of(&r.model)?.mesh_concept.label();
+        let cham = occ.req_text("NOM_CHAM")?.to_string();
+        let steps: Vec<&Step> = if occ.has("NUME_ORDRE") {
+            occ.ints("NUME_ORDRE")
+                .iter()
+                .map(|n| {
+                    r.by_order(*n)
+                        .ok_or_else(|| occ.err("NUME_ORDRE", format!("result {name} has no order number {n}")))
+                })
+                .collect::<Result<_>>()?
+        } else if occ.has("INST") {
+            let prec = occ.real("PRECISION").unwrap_or(1e-6);
+            occ.reals("INST")
+                .iter()
+                .map(|t| {
+                    r.by_inst(*t, prec).ok_or_else(|| occ.err("INST", format!("result {name} has no step at time {t}")))
+                })
+                .collect::<Result<_>>()?
+        } else {
+            r.steps.iter().collect()
+        };
+        let nodes = super::model::select_nodes(&mesh, occ, &mesh_name)?;
+        let cells_sel = if occ.has("GROUP_MA") || occ.has("MAILLE") || occ.has("TOUT") {
+            Some(super::model::select_cells(&mesh, occ, &mesh_name)?)
+        } else {
+            None
+        };
+        for step in steps {
+            let field = step.fields.get(&cham).ok_or_else(|| {
+                occ.err("NOM_CHAM", format!("result {name} has no field {cham} at order {}", step.nume_ordre))
+            })?;
+            let comps: Vec<String> =
+                if occ.text("TOUT_CMP") == Some("OUI") { field.components().to_vec() } else { occ.texts("NOM_CMP") };
+            let ks: Vec<usize> = comps
+                .iter()
+                .map(|c| {
+                    field.component(c).ok_or_else(|| occ.err("NOM_CMP", format!("field {cham} has no component {c}")))
+                })
+                .collect::<Result<_>>()?;
+            let n = field.components().len();
+            let head = |node: usize, cell: Option<usize>| {
+                let mut row = vec![
+                    ("INTITULE".to_string(), Cell::Text(intitule.clone())),
+                    ("RESU".to_string(), Cell::Text(name.clone())),
+                    ("NOM_CHAM".to_string(), Cell::Text(cham.clone())),
+                    ("NUME_ORDRE".to_string(), Cell::Int(step.nume_ordre)),
+                    ("INST".to_string(), Cell::Real(step.inst)),
+                ];
+                if let Some(c) = cell {
+                    row.push(("MAILLE".to_string(), Cell::Text(mesh.cell_names[c].clone())));
+                }
+                row.push(("NOEUD".to_string(), Cell::Text(mesh.node_names[node].clone())));
+                let xyz = ["COOR_X", "COOR_Y", "COOR_Z"];
+                for (d, name) in xyz.iter().enumerate().take(mesh.dim.max(2)) {
+                    row.push((name.to_string(), Cell::Real(mesh.coords[node][d])));
+                }
+                row
+            };
+            match field {
+                Field::Node { values, .. } => {
+                    for &node in &nodes {
+                        let mut row = head(node, None);
+                        for (c, &k) in comps.iter().zip(&ks) {
+                            let v = values[node * n + k];
+                            row.push((c.clone(), if v.is_nan() { Cell::Empty } else { Cell::Real(v) }));
+                        }
+                        rows.push(row);
+                    }
+                }
+                Field::Elno { cells, .. } => {
+                    let cell_list: Vec<usize> = match &cells_sel {
+                        Some(c) => c.clone(),
+                        None => {
+                            (0..mesh.cells.len()).filter(|&c| mesh.cells[c].iter().any(|x| nodes.contains(x))).collect()
+                        }
+                    };
+                    for c in cell_list {
+                        let Some(vals) = &cells[c] else { continue };
+                        for (i, &node) in mesh.cells[c].iter().enumerate() {
+                            if !nodes.contains(&node) {
+                                continue;
+                            }
+                            let mut row = head(node, Some(c));
+                            for (cn, &k) in comps.iter().zip(&ks) {
+                                row.push((cn.clone(), Cell::Real(vals[i * n + k])));
+                            }
+                            rows.push(row);
+                        }
+                    }
+                }
+                _ => {
+                    return Err(occ.err(
+                        "NOM_CHAM",
+                        format!("extraction of {cham} (a field at Gauss points or per cell) is not supported yet"),
+                    ))
+                }
+            }
+        }
+    }
+    // Columns in order of first appearance.
+    let mut names: Vec<String> = Vec::new();
+    for r in &rows {
+        for (n, _) in r {
+            if !names.contains(n) {
+                names.push(n.clone());
+            }
+        }
+    }
+    for n in &names {
+        let cells: Vec<Cell> = rows
+            .iter()
+            .map(|r| r.iter().find(|(k, _)| k == n).map(|(_, c)| c.clone()).unwrap_or(Cell::Empty))
+            .collect();
+        let ty = match cells.iter().find(|c| !c.is_empty()) {
+            Some(Cell::Int(_)) => ColType::I,
+            Some(Cell::Text(_)) => ColType::K(16),
+            _ => ColType::R,
+        };
+        t.add_column(n, ty, cells)?;
+    }
+    if let Some(title) = a.text("TITRE") {
+        t.title = title.to_string();
+    }
+    Ok(Some(ConceptData::Table(t)))
+}

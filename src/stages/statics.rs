@@ -1,0 +1,514 @@
+//! MECA_STATIQUE (linear elastic statics) and CALC_CHAMP (stresses and
+//! strains at nodes): model + material field + loads → assembled, reduced,
+//! solved with the `fem` and `solve` libraries; the run log states the size
+//! of the system, what was eliminated and the time of each phase.
+
+use super::model::model_of;
+use super::results::result_of;
+use super::Ctx;
+use crate::catalog::args::Args;
+use crate::concepts::model::{Load, LoadItem, LoadValue, Material, MaterialField, Role};
+use crate::concepts::result::{Field, ResultData, Step};
+use crate::concepts::{ConceptData, ConceptRef};
+use crate::diag::{Error, Result};
+use crate::fem::assembly::{Assembler, ElementDofs, SparsityPattern};
+use crate::fem::dofs::{component_index, Constraints, DofMap, DofNumbering};
+use crate::fem::elasticity::{self, IsoElastic, Modelisation};
+use crate::mesh::Mesh;
+use crate::solve::{self, SolverOptions};
+use std::collections::BTreeMap;
+use std::rc::Rc;
+use std::time::Instant;
+
+/// Evaluate a load value at a point and time.
+pub fn load_value(v: &LoadValue, x: &[f64; 3], inst: f64) -> Result<f64> {
+    match v {
+        LoadValue::Real(r) => Ok(*r),
+        LoadValue::Func(c) => eval_at(c, x, inst),
+    }
+}
+
+/// A function, nappe or formula of (X, Y, Z, INST) at a point and time.
+pub fn eval_at(c: &ConceptRef, x: &[f64; 3], inst: f64) -> Result<f64> {
+    let arg = |p: &str| -> Result<f64> {
+        match p {
+            "X" => Ok(x[0]),
+            "Y" => Ok(x[1]),
+            "Z" => Ok(x[2]),
+            "INST" => Ok(inst),
+            other => {
+                Err(Error::runtime(format!("{}: parameter {other} is not known here (X, Y, Z or INST)", c.label())))
+            }
+        }
+    };
+    match &*c.data() {
+        ConceptData::Function(f) if f.nom_para == "TOUTPARA" => f.eval(0.0),
+        ConceptData::Function(f) => f.eval(arg(&f.nom_para)?),
+        ConceptData::Nappe(n) => n.eval(arg(&n.nom_para)?, arg(&n.nom_para_fonc)?),
+        ConceptData::Formula(f) => {
+            let vals: Vec<f64> = f.nom_para.iter().map(|p| arg(p)).collect::<Result<_>>()?;
+            f.eval(&vals)
+        }
+        _ => Err(Error::runtime(format!("{} ({}) is not a function", c.label(), c.kind()))),
+    }
+}
+
+fn elastic_of(m: &Material, cell: &str) -> Result<IsoElastic> {
+    match (m.real("ELAS", "E"), m.real("ELAS", "NU")) {
+        (Some(e), Some(nu)) => Ok(IsoElastic::new(e, nu)),
+        _ if m.behaviours.contains_key("ELAS_FO") => {
+            Err(Error::runtime(format!("cell {cell}: ELAS_FO (temperature-dependent elasticity) is not supported yet")))
+        }
+        _ => Err(Error::runtime(format!("cell {cell}: the material has no ELAS (E, NU)"))),
+    }
+}
+
+/// What a linear elastic computation is built from, checked.
+struct Problem {
+    mesh: Rc<Mesh>,
+    modelisation: Modelisation,
+    bulk: Vec<usize>,
+    materials: Vec<Option<(IsoElastic, f64)>>,
+    numbering: DofNumbering,
+}
+
+fn problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<Problem> {
+    let m = model_of(model)?;
+    let mesh = m.mesh.clone();
+    let mut modelisation = None;
+    let mut bulk = Vec::new();
+    for (c, e) in m.elements.iter().enumerate() {
+        let Some(e) = e else { continue };
+        let Some(md) = Modelisation::from_name(&e.modelisation) else {
+            return Err(Error::runtime(format!(
+                "MODELISATION='{}' is not supported yet by this command (3D, D_PLAN, C_PLAN, AXIS are)",
+                e.modelisation
+            )));
+        };
+        if modelisation.is_some_and(|x| x != md) {
+            return Err(Error::runtime("models mixing several modelisations are not supported yet"));
+        }
+        modelisation = Some(md);
+        if e.role == Role::Bulk {
+            bulk.push(c);
+        }
+    }
+    let modelisation = modelisation.ok_or_else(|| Error::runtime(format!("model {} has no element", model.label())))?;
+    let data = chmat.data();
+    let ConceptData::MaterialField(MaterialField { cells, .. }) = &*data else {
+        return Err(Error::runtime(format!("{} holds no material field", chmat.label())));
+    };
+    let mut materials = vec![None; mesh.cells.len()];
+    for &c in &bulk {
+        let Some(mc) = &cells[c] else {
+            return Err(Error::runtime(format!(
+                "cell {} of the model has no material (AFFE_MATERIAU)",
+                mesh.cell_names[c]
+            )));
+        };
+        let md = mc.data();
+        let ConceptData::Material(mat) = &*md else { unreachable!("AFFE_MATERIAU holds materials") };
+        let rho = mat.real("ELAS", "RHO").unwrap_or(0.0);
+        materials[c] = Some((elastic_of(mat, &mesh.cell_names[c])?, rho));
+    }
+    let numbering = DofNumbering::for_cells(&mesh, modelisation.dim(), &bulk);
+    Ok(Problem { mesh, modelisation, bulk, materials, numbering })
+}
+
+fn coords_of(mesh: &Mesh, cell: usize) -> Vec<[f64; 3]> {
+    mesh.cells[cell].iter().map(|&n| mesh.coords[n]).collect()
+}
+
+/// The loads of EXCIT with their multiplier at `inst`.
+fn loads(a: &Args, inst: f64) -> Result<Vec<(ConceptRef, f64)>> {
+    let mut out = Vec::new();
+    for occ in a.facts("EXCIT") {
+        if occ.given("TYPE_CHARGE") && occ.text("TYPE_CHARGE") != Some("FIXE_CSTE") {
+            return Err(occ.err("TYPE_CHARGE", "not supported yet"));
+        }
+        let c = occ.req_concept("CHARGE")?;
+        let mult = match occ.concept("FONC_MULT") {
+            Some(f) => eval_at(&f, &[0.0; 3], inst).map_err(|e| e.at(occ.span_of("FONC_MULT")))?,
+            None => 1.0,
+        };
+        out.push((c, mult));
+    }
+    Ok(out)
+}
+
+pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    for kw in ["CARA_ELEM", "LIST_INST", "SENSIBILITE"] {
+        if a.given(kw) {
+            return Err(a.err(kw, "not supported yet"));
+        }
+    }
+    if let Some(o) = a.text("OPTION") {
+        if o != "SIEF_ELGA" && o != "SANS" {
+            return Err(a.err("OPTION", format!("OPTION='{o}' is not supported yet")));
+        }
+    }
+    let t_all = Instant::now();
+    let model = a.req_concept("MODELE")?;
+    let chmat = a.concept("CHAM_MATER").ok_or_else(|| a.err("CHAM_MATER", "a material field is required"))?;
+    let inst = a.reals("INST").first().copied().unwrap_or(0.0);
+    let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
+    let mesh = &p.mesh;
+    let md = p.modelisation;
+    let dim = md.dim();
+    let t0 = Instant::now();
+
+    // Kinematic conditions and forces.
+    let mut cons = Constraints::new();
+    let mut forces: Vec<(Vec<usize>, Vec<f64>)> = Vec::new();
+    let model_ref = model_of(&model)?;
+    for (lc, mult) in loads(a, inst)? {
+        let data = lc.data();
+        let ConceptData::Load(Load { items, model: lmodel, .. }) = &*data else {
+            return Err(a.err("EXCIT", format!("{} is not a mechanical load", lc.label())));
+        };
+        if !Rc::ptr_eq(lmodel, &model) {
+            return Err(a.err("EXCIT", format!("load {} is defined on another model ({})", lc.label(), lmodel.label())));
+        }
+        for item in items {
+            match item {
+                LoadItem::Dof { node, component, value } => {
+                    let comp = component_index(component).filter(|&k| k < dim).ok_or_else(|| {
+                        a.err(
+                            "EXCIT",
+                            format!("load {}: component {component} is not a dof of a {} model", lc.label(), md.name()),
+                        )
+                    })?;
+                    let dof = p.numbering.dof(*node, comp).ok_or_else(|| {
+                        a.err(
+                            "EXCIT",
+                            format!(
+                                "load {}: node {} carries no element of the model",
+                                lc.label(),
+                                mesh.node_names[*node]
+                            ),
+                        )
+                    })?;
+                    cons.impose(dof, mult * load_value(value, &mesh.coords[*node], inst)?);
+                }
+                LoadItem::Relation { terms, value } => {
+                    let mut t = Vec::new();
+                    for (node, comp, coef) in terms {
+                        let k = component_index(comp)
+                            .filter(|&k| k < dim)
+                            .ok_or_else(|| a.err("EXCIT", format!("component {comp} is not a dof of the model")))?;
+                        let dof = p.numbering.dof(*node, k).ok_or_else(|| {
+                            a.err("EXCIT", format!("node {} carries no element of the model", mesh.node_names[*node]))
+                        })?;
+                        t.push((dof, *coef));
+                    }
+                    cons.relation(t, mult * load_value(value, &[0.0; 3], inst)?);
+                }
+                LoadItem::NodalForce { node, component, value } => {
+                    let k = match component.as_str() {
+                        "FX" => 0,
+                        "FY" => 1,
+                        "FZ" => 2,
+                        c => {
+                            return Err(
+                                a.err("EXCIT", format!("load {}: FORCE_NODALE {c} is not supported yet", lc.label()))
+                            )
+                        }
+                    };
+                    if k >= dim {
+                        return Err(
+                            a.err("EXCIT", format!("load {}: {component} in a {} model", lc.label(), md.name()))
+                        );
+                    }
+                    let dof = p.numbering.dof(*node, k).ok_or_else(|| {
+                        a.err("EXCIT", format!("node {} carries no element of the model", mesh.node_names[*node]))
+                    })?;
+                    forces.push((vec![dof], vec![mult * load_value(value, &mesh.coords[*node], inst)?]));
+                }
+                LoadItem::SurfaceForce { cells, components } => {
+                    for &c in cells {
+                        if model_ref.elements[c].as_ref().map(|e| e.role) != Some(Role::Skin) {
+                            return Err(a.err(
+                                "EXCIT",
+                                format!(
+                                    "load {}: cell {} is not a boundary cell of the model",
+                                    lc.label(),
+                                    mesh.cell_names[c]
+                                ),
+                            ));
+                        }
+                        let xs = coords_of(mesh, c);
+                        let err = std::cell::RefCell::new(None);
+                        let f = |x: &[f64; 3], _n: &[f64; 3]| -> [f64; 3] {
+                            let mut v = [0.0; 3];
+                            for (name, val) in components {
+                                let k = match name.as_str() {
+                                    "FX" => 0,
+                                    "FY" => 1,
+                                    _ => 2,
+                                };
+                                match load_value(val, x, inst) {
+                                    Ok(r) => v[k] = mult * r,
+                                    Err(e) => *err.borrow_mut() = Some(e),
+                                }
+                            }
+                            v
+                        };
+                        let fe = elasticity::boundary_force(md, mesh.cell_types[c], &xs, &f)
+                            .map_err(|e| Error::runtime(e.to_string()))?;
+                        if let Some(e) = err.into_inner() {
+                            return Err(e.at(a.span));
+                        }
+                        let dofs = p
+                            .numbering
+                            .cell_dofs(&mesh.cells[c])
+                            .ok_or_else(|| a.err("EXCIT", "boundary cell off the model"))?;
+                        forces.push((dofs, fe));
+                    }
+                }
+                LoadItem::Pressure { cells, value } => {
+                    for &c in cells {
+                        if model_ref.elements[c].as_ref().map(|e| e.role) != Some(Role::Skin) {
+                            return Err(a.err(
+                                "EXCIT",
+                                format!(
+                                    "load {}: cell {} is not a boundary cell of the model",
+                                    lc.label(),
+                                    mesh.cell_names[c]
+                                ),
+                            ));
+                        }
+                        let xs = coords_of(mesh, c);
+                        let pres: Vec<f64> =
+                            xs.iter().map(|x| load_value(value, x, inst).map(|v| v * mult)).collect::<Result<_>>()?;
+                        let fe = elasticity::pressure_force(md, mesh.cell_types[c], &xs, &pres, None)
+                            .map_err(|e| Error::runtime(e.to_string()))?;
+                        let dofs = p
+                            .numbering
+                            .cell_dofs(&mesh.cells[c])
+                            .ok_or_else(|| a.err("EXCIT", "boundary cell off the model"))?;
+                        forces.push((dofs, fe));
+                    }
+                }
+                LoadItem::Gravity { g, direction, cells } => {
+                    let on: Vec<usize> = match cells {
+                        Some(c) => c.iter().copied().filter(|c| p.materials[*c].is_some()).collect(),
+                        None => p.bulk.clone(),
+                    };
+                    for c in on {
+                        let rho = p.materials[c].as_ref().unwrap().1;
+                        let xs = coords_of(mesh, c);
+                        let acc = [
+                            rho * g * direction[0] * mult,
+                            rho * g * direction[1] * mult,
+                            rho * g * direction[2] * mult,
+                        ];
+                        let fe = elasticity::body_force(md, mesh.cell_types[c], &xs, &|_x| acc)
+                            .map_err(|e| Error::runtime(e.to_string()))?;
+                        let dofs = p.numbering.cell_dofs(&mesh.cells[c]).unwrap();
+                        forces.push((dofs, fe));
+                    }
+                }
+            }
+        }
+    }
+    drop(model_ref);
+    let map = DofMap::build(p.numbering.ndofs(), &cons)
+        .map_err(|e| a.err("EXCIT", format!("incompatible kinematic conditions: {e}")))?;
+    let t_numbering = t0.elapsed();
+
+    // Assembly.
+    let t0 = Instant::now();
+    let mut elems = ElementDofs::new();
+    for &c in &p.bulk {
+        elems.push(&p.numbering.cell_dofs(&mesh.cells[c]).unwrap());
+    }
+    let pattern = SparsityPattern::build(&map, &elems);
+    let mut asm = Assembler::new(&map, pattern);
+    for (i, &c) in p.bulk.iter().enumerate() {
+        let mat = &p.materials[c].as_ref().unwrap().0;
+        let ke = elasticity::stiffness(md, mat, mesh.cell_types[c], &coords_of(mesh, c))
+            .map_err(|e| Error::runtime(format!("cell {}: {e}", mesh.cell_names[c])).at(a.span))?;
+        asm.add_matrix(elems.get(i), &ke);
+    }
+    for (dofs, fe) in &forces {
+        asm.add_vector(dofs, fe);
+    }
+    let (k, rhs) = asm.finish();
+    let t_assembly = t0.elapsed();
+
+    // Solve.
+    let mut opts = SolverOptions::default();
+    if let Some(s) = a.fact("SOLVEUR") {
+        if let Some(n) = s.int("NPREC") {
+            opts.nprec = n as i32;
+        }
+        if let Some(r) = s.real("RESI_RELA") {
+            opts.resi_rela = r;
+        }
+    }
+    let sol = solve::solve(k.as_ref(), &rhs, &opts).map_err(|e| match e {
+        solve::SolveError::Singular { dofs, .. } => {
+            let names: Vec<String> =
+                dofs.iter().take(6).map(|&d| p.numbering.label(map.free_to_full[d], Some(mesh))).collect();
+            a.err(
+                "EXCIT",
+                format!("the system is singular (rigid-body motion not prevented?): unknowns {}", names.join(", ")),
+            )
+        }
+        other => Error::runtime(other.to_string()).at(a.span),
+    })?;
+    let u = map.expand(&sol.x);
+
+    // Fields.
+    let t0 = Instant::now();
+    let ncmp = dim;
+    let mut depl = vec![f64::NAN; mesh.coords.len() * ncmp];
+    for (d, v) in u.iter().enumerate() {
+        let (node, k) = p.numbering.node_comp(d);
+        depl[node * ncmp + k] = *v;
+    }
+    let comps: Vec<String> = ["DX", "DY", "DZ"][..dim].iter().map(|s| s.to_string()).collect();
+    let mut fields = BTreeMap::new();
+    fields.insert("DEPL".to_string(), Field::Node { components: comps, values: depl });
+    if a.text("OPTION") != Some("SANS") {
+        let mut cells = vec![None; mesh.cells.len()];
+        for &c in &p.bulk {
+            let ue: Vec<f64> = p.numbering.cell_dofs(&mesh.cells[c]).unwrap().iter().map(|&d| u[d]).collect();
+            let g = elasticity::gauss_fields(
+                md,
+                &p.materials[c].as_ref().unwrap().0,
+                mesh.cell_types[c],
+                &coords_of(mesh, c),
+                &ue,
+            )
+            .map_err(|e| Error::runtime(e.to_string()))?;
+            cells[c] = Some(g.sig.iter().flat_map(|s| s[..md.nsig()].to_vec()).collect());
+        }
+        let names = md.sigma_names().iter().map(|s| s.to_string()).collect();
+        fields.insert("SIEF_ELGA".to_string(), Field::Elga { components: names, cells });
+    }
+    let t_post = t0.elapsed();
+    ctx.io.mess(&format!(
+        "  linear statics ({}): {} unknowns, {} eliminated by kinematic conditions, {} solved ({:?}); residual {:.1e}\n  \
+         time: numbering {:.3} s, assembly {:.3} s, factorization {:.3} s, solve {:.3} s, fields {:.3} s, total {:.3} s\n",
+        md.name(),
+        map.nfull,
+        map.n_eliminated(),
+        map.nfree,
+        sol.method,
+        sol.residual,
+        t_numbering.as_secs_f64(),
+        t_assembly.as_secs_f64(),
+        (sol.timings.symbolic + sol.timings.factorization).as_secs_f64(),
+        sol.timings.solve.as_secs_f64(),
+        t_post.as_secs_f64(),
+        t_all.elapsed().as_secs_f64()
+    ));
+    let loads = a.facts("EXCIT").iter().filter_map(|o| o.concept("CHARGE")).collect();
+    Ok(Some(ConceptData::Result(ResultData {
+        model,
+        material: Some(chmat),
+        loads,
+        steps: vec![Step { nume_ordre: 1, inst, fields }],
+    })))
+}
+
+// ------------------------------------------------------------------ CALC_CHAMP
+
+/// Average ELNO values to nodes over the cells sharing each node.
+fn to_nodes(mesh: &Mesh, cells: &[Option<Vec<f64>>], ncmp: usize) -> Vec<f64> {
+    let mut sum = vec![0.0; mesh.coords.len() * ncmp];
+    let mut count = vec![0usize; mesh.coords.len()];
+    for (c, v) in cells.iter().enumerate() {
+        let Some(v) = v else { continue };
+        for (i, &n) in mesh.cells[c].iter().enumerate() {
+            count[n] += 1;
+            for k in 0..ncmp {
+                sum[n * ncmp + k] += v[i * ncmp + k];
+            }
+        }
+    }
+    for n in 0..count.len() {
+        for k in 0..ncmp {
+            sum[n * ncmp + k] = if count[n] > 0 { sum[n * ncmp + k] / count[n] as f64 } else { f64::NAN };
+        }
+    }
+    sum
+}
+
+pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    const DONE: &[&str] = &["SIGM_ELNO", "SIGM_NOEU", "EPSI_ELNO", "EPSI_NOEU", "SIEF_ELGA", "EPSI_ELGA"];
+    let rc = a.req_concept("RESULTAT")?;
+    let mut wanted = Vec::new();
+    for kw in ["CONTRAINTE", "DEFORMATION"] {
+        for o in a.texts(kw) {
+            if !DONE.contains(&o.as_str()) {
+                return Err(a.err(kw, format!("option {o} is not supported yet")));
+            }
+            wanted.push(o);
+        }
+    }
+    for kw in
+        ["CRITERES", "ENERGIE", "FORCE", "VARI_INTERNE", "ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"]
+    {
+        if a.given(kw) {
+            return Err(a.err(kw, "not supported yet"));
+        }
+    }
+    let (model, chmat, mut steps) = {
+        let r = result_of(&rc)?;
+        let chmat = r.material.clone().ok_or_else(|| a.err("RESULTAT", "the result has no material field"))?;
+        (r.model.clone(), chmat, r.steps.clone())
+    };
+    let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
+    let mesh = &p.mesh;
+    let md = p.modelisation;
+    let restrict = if a.has("GROUP_MA") || a.has("MAILLE") {
+        Some(super::model::select_cells(mesh, a, &model_of(&model)?.mesh_concept.label())?)
+    } else {
+        None
+    };
+    let only = |c: &usize| restrict.as_ref().map(|r| r.contains(c)).unwrap_or(true);
+    let orders = a.ints("NUME_ORDRE");
+    for step in steps.iter_mut() {
+        if !orders.is_empty() && !orders.contains(&step.nume_ordre) {
+            continue;
+        }
+        let Some(Field::Node { values: depl, .. }) = step.fields.get("DEPL") else {
+            return Err(a.err("RESULTAT", format!("no DEPL at order {}", step.nume_ordre)));
+        };
+        let ns = md.nsig();
+        let (mut sig_elno, mut eps_elno) = (vec![None; mesh.cells.len()], vec![None; mesh.cells.len()]);
+        let (mut sig_elga, mut eps_elga) = (vec![None; mesh.cells.len()], vec![None; mesh.cells.len()]);
+        for &c in p.bulk.iter().filter(|c| only(c)) {
+            let ue: Vec<f64> =
+                mesh.cells[c].iter().flat_map(|&n| (0..md.dim()).map(move |k| depl[n * md.dim() + k])).collect();
+            let mat = &p.materials[c].as_ref().unwrap().0;
+            let xs = coords_of(mesh, c);
+            let (eps, sig) = elasticity::node_fields(md, mat, mesh.cell_types[c], &xs, &ue)
+                .map_err(|e| Error::runtime(e.to_string()))?;
+            sig_elno[c] = Some(sig.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
+            eps_elno[c] = Some(eps.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
+            let g = elasticity::gauss_fields(md, mat, mesh.cell_types[c], &xs, &ue)
+                .map_err(|e| Error::runtime(e.to_string()))?;
+            sig_elga[c] = Some(g.sig.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
+            eps_elga[c] = Some(g.eps.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
+        }
+        let sn: Vec<String> = md.sigma_names().iter().map(|s| s.to_string()).collect();
+        let en: Vec<String> = md.epsilon_names().iter().map(|s| s.to_string()).collect();
+        for o in &wanted {
+            let f = match o.as_str() {
+                "SIGM_ELNO" => Field::Elno { components: sn.clone(), cells: sig_elno.clone() },
+                "EPSI_ELNO" => Field::Elno { components: en.clone(), cells: eps_elno.clone() },
+                "SIGM_NOEU" => Field::Node { components: sn.clone(), values: to_nodes(mesh, &sig_elno, ns) },
+                "EPSI_NOEU" => Field::Node { components: en.clone(), values: to_nodes(mesh, &eps_elno, ns) },
+                "SIEF_ELGA" => Field::Elga { components: sn.clone(), cells: sig_elga.clone() },
+                _ => Field::Elga { components: en.clone(), cells: eps_elga.clone() },
+            };
+            step.fields.insert(o.clone(), f);
+        }
+    }
+    let r = result_of(&rc)?;
+    let data = ResultData { model: r.model.clone(), material: r.material.clone(), loads: r.loads.clone(), steps };
+    Ok(Some(ConceptData::Result(data)))
+}

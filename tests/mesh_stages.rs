@@ -1,0 +1,469 @@
+//! LIRE_MAILLAGE, DEFI_GROUP and IMPR_RESU (MED) run through the `aster`
+//! binary; `aster mesh info`, `aster mesh box` and `aster diff`; bad input.
+//!
+//! Expected group contents are computed here from the generated (or astest)
+//! mesh read with the library, independently of the stages. The astest
+//! meshes are read in place from `../shared/astest` through `--unit`
+//! mappings (tests that need them print a message and pass when absent).
+
+use aster::med;
+use aster::mesh::generate::box_mesh;
+use aster::mesh::{CellType, Mesh};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn aster() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_aster"))
+}
+
+fn scratch(test: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("aster-rs-meshstages-{}-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn astest(file: &str) -> Option<PathBuf> {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/astest").join(file);
+    if p.exists() {
+        Some(p)
+    } else {
+        println!("SKIP: {} is absent", p.display());
+        None
+    }
+}
+
+fn text(o: &Output) -> (String, String) {
+    (String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
+}
+
+/// Run a command file with unit mappings; returns the process output.
+fn run_comm(dir: &Path, name: &str, src: &str, units: &[(i64, &Path)]) -> Output {
+    let comm = dir.join(format!("{name}.comm"));
+    std::fs::write(&comm, src).unwrap();
+    let mut cmd = aster();
+    cmd.arg("run").arg(&comm).arg("--out").arg(dir.join(format!("{name}.out"))).arg("-q");
+    for (u, p) in units {
+        cmd.arg("--unit").arg(format!("{u}={}", p.display()));
+    }
+    cmd.output().unwrap()
+}
+
+fn run_ok(dir: &Path, name: &str, src: &str, units: &[(i64, &Path)]) {
+    let o = run_comm(dir, name, src, units);
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{name} failed:\nstdout:\n{out}\nstderr:\n{err}");
+}
+
+/// Names of a list of node indices.
+fn names(mesh: &Mesh, nodes: &[usize]) -> Vec<String> {
+    nodes.iter().map(|&n| mesh.node_names[n].clone()).collect()
+}
+
+/// Node group of a mesh read back, as names.
+fn group_names(mesh: &Mesh, g: &str) -> Vec<String> {
+    let v = mesh.node_groups.get(g).unwrap_or_else(|| panic!("no node group {g}"));
+    names(mesh, v)
+}
+
+/// Sorted, deduplicated nodes of some cells, optionally vertices only.
+fn nodes_of(mesh: &Mesh, cells: &[usize], vertices_only: bool) -> Vec<usize> {
+    let mut v: Vec<usize> = cells
+        .iter()
+        .flat_map(|&c| {
+            let k = if vertices_only { mesh.cell_types[c].nvertices() } else { mesh.cells[c].len() };
+            mesh.cells[c][..k].to_vec()
+        })
+        .collect();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+/// The members of a group as DEFI_GROUP INFO=2 lists them in the message
+/// file, in order ("nodes of group G:" / "cells of group G:" then lines of
+/// names). MED files keep groups as families, so member order is only
+/// observable there.
+fn listed(dir: &Path, name: &str, header: &str) -> Vec<String> {
+    let mess = std::fs::read_to_string(dir.join(format!("{name}.out")).join(format!("{name}.mess"))).unwrap();
+    let mut lines = mess.lines().skip_while(|l| l.trim() != header);
+    assert!(lines.next().is_some(), "no '{header}' in {name}.mess");
+    lines
+        .take_while(|l| l.starts_with("  ") && !l.trim().is_empty() && !l.trim_start().starts_with('#'))
+        .flat_map(|l| l.split_whitespace())
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn mesh_box_and_info() {
+    let dir = scratch("box");
+    let out = dir.join("q4.med");
+    let o = aster()
+        .args(["mesh", "box", "--cell", "QUAD4", "--n", "4,3", "--size", "2,1.5", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{:?}", text(&o));
+    let m = med::read_mesh(&out, Some("MAIL")).unwrap();
+    let (nx, ny) = (4usize, 3usize);
+    assert_eq!(m.nnodes(), (nx + 1) * (ny + 1));
+    assert_eq!(m.cell_type_counts()[&CellType::Quad4], nx * ny);
+    assert_eq!(m.cell_type_counts()[&CellType::Seg2], 2 * (nx + ny));
+    for (g, axis, val, count) in
+        [("BAS", 1, 0.0, nx + 1), ("HAUT", 1, 1.5, nx + 1), ("GAUCHE", 0, 0.0, ny + 1), ("DROITE", 0, 2.0, ny + 1)]
+    {
+        let want: Vec<usize> = (0..m.nnodes()).filter(|&i| m.coords[i][axis] == val).collect();
+        assert_eq!(want.len(), count);
+        assert_eq!(m.node_groups[g], want, "{g}");
+    }
+
+    let o = aster().args(["mesh", "info"]).arg(&out).output().unwrap();
+    let (stdout, err) = text(&o);
+    assert!(o.status.success(), "{err}");
+    let lines: Vec<Vec<&str>> = stdout.lines().map(|l| l.split_whitespace().collect()).collect();
+    assert!(lines.contains(&vec!["nodes:", "20"]), "{stdout}");
+    assert!(lines.contains(&vec!["QUAD4", "12"]), "{stdout}");
+    assert!(lines.contains(&vec!["SEG2", "14"]), "{stdout}");
+    assert!(lines.contains(&vec!["BAS", "5"]), "{stdout}"); // node group
+    assert!(lines.contains(&vec!["BAS", "4"]), "{stdout}"); // cell group
+    assert!(stdout.contains("bounding box: x in [0, 2], y in [0, 1.5]"), "{stdout}");
+
+    // A mesh name that is not in the file.
+    let o = aster().args(["mesh", "info", "--mesh", "NOPE"]).arg(&out).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).1.contains("no mesh named 'NOPE'"), "{:?}", text(&o));
+}
+
+#[test]
+fn defi_group_on_a_generated_box() {
+    let dir = scratch("defi");
+    let src_mesh = dir.join("h20.med");
+    let mesh = box_mesh(CellType::Hexa20, &[2, 3, 2], &[1.0, 1.5, 2.0]).unwrap();
+    med::write_mesh(&src_mesh, &mesh, "BOX").unwrap();
+    let result = dir.join("out.rmed");
+    let comm = r#"
+DEBUT()
+MA = LIRE_MAILLAGE(FORMAT='MED', NOM_MED='BOX', INFO=2)
+MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, INFO=2,
+    DETR_GROUP_NO=_F(NOM=('XMIN',)),
+    CREA_GROUP_MA=(
+        _F(NOM='XFACES', UNION=('XMIN', 'XMAX')),
+        _F(NOM='SKIN', TOUT='OUI', TYPE_MAILLE='2D'),
+        _F(NOM='HEX', TOUT='OUI', TYPE_MAILLE='HEXA20'),
+        _F(NOM='TWO', MAILLE=('M3', 'M1')),
+        _F(NOM='NOTX', DIFFE=('SKIN', 'XFACES')),
+        _F(NOM='SECOND', GROUP_MA='HEX', NUME_INIT=2, NUME_FIN=2),
+    ),
+    CREA_GROUP_NO=(
+        _F(GROUP_MA='XMIN'),
+        _F(NOM='XMAXS', GROUP_MA='XMAX', CRIT_NOEUD='SOMMET'),
+        _F(NOM='EDGE', INTERSEC=('YMIN', 'ZMIN')),
+        _F(NOM='YZ', UNION=('ZMIN', 'YMIN')),
+        _F(NOM='Y_NOT_Z', DIFFE=('YMIN', 'ZMIN')),
+        _F(NOM='PICK', NOEUD=('N7', 'N2')),
+        _F(NOM='MIDX', OPTION='PLAN', POINT=(0.5, 0., 0.), VECT_NORMALE=(2., 0., 0.), PRECISION=1.e-9),
+    ),
+)
+IMPR_RESU(FORMAT='MED', UNITE=80, RESU=_F(MAILLAGE=MA))
+FIN()
+"#;
+    run_ok(&dir, "defi", comm, &[(20, &src_mesh), (80, &result)]);
+    let got = med::read_mesh(&result, Some("MA")).unwrap();
+    let m = &mesh;
+    // Unchanged geometry.
+    assert_eq!(got.coords, m.coords);
+    assert_eq!(got.cells, m.cells);
+    // Cell groups.
+    let mut xfaces = m.cell_groups["XMIN"].clone();
+    xfaces.extend(&m.cell_groups["XMAX"]);
+    assert_eq!(got.cell_groups["XFACES"], xfaces);
+    let skin: Vec<usize> = (0..m.ncells()).filter(|&c| m.cell_types[c].dim() == 2).collect();
+    let hex: Vec<usize> = (0..m.ncells()).filter(|&c| m.cell_types[c] == CellType::Hexa20).collect();
+    assert_eq!(got.cell_groups["SKIN"], skin);
+    assert_eq!(got.cell_groups["HEX"], hex);
+    assert_eq!(got.cell_groups["TWO"], vec![0, 2]);
+    assert_eq!(listed(&dir, "defi", "cells of group TWO:"), vec!["M3", "M1"]);
+    let notx: Vec<usize> = skin.iter().copied().filter(|c| !xfaces.contains(c)).collect();
+    assert_eq!(got.cell_groups["NOTX"], notx);
+    assert_eq!(got.cell_groups["SECOND"], vec![hex[1]]);
+    // Node groups.
+    assert_eq!(got.node_groups["XMIN"], nodes_of(m, &m.cell_groups["XMIN"], false));
+    assert_eq!(got.node_groups["XMAXS"], nodes_of(m, &m.cell_groups["XMAX"], true));
+    assert_eq!(got.node_groups["XMAXS"].len(), 4 * 3);
+    let (ymin, zmin) = (&m.node_groups["YMIN"], &m.node_groups["ZMIN"]);
+    let edge: Vec<usize> = ymin.iter().copied().filter(|n| zmin.contains(n)).collect();
+    assert_eq!(edge.len(), 2 * 2 + 1);
+    assert!(edge.iter().all(|&n| m.coords[n][1] == 0.0 && m.coords[n][2] == 0.0));
+    assert_eq!(got.node_groups["EDGE"], edge);
+    let mut yz = zmin.clone();
+    yz.extend(ymin.iter().copied().filter(|n| !zmin.contains(n)));
+    let mut yz_sorted = yz.clone();
+    yz_sorted.sort_unstable();
+    assert_eq!(got.node_groups["YZ"], yz_sorted);
+    assert_eq!(listed(&dir, "defi", "nodes of group YZ:"), names(m, &yz));
+    let y_not_z: Vec<usize> = ymin.iter().copied().filter(|n| !zmin.contains(n)).collect();
+    assert_eq!(got.node_groups["Y_NOT_Z"], y_not_z);
+    assert_eq!(group_names(&got, "PICK"), vec!["N2", "N7"]);
+    assert_eq!(listed(&dir, "defi", "nodes of group PICK:"), vec!["N7", "N2"]);
+    let midx: Vec<usize> = (0..m.nnodes()).filter(|&n| (m.coords[n][0] - 0.5).abs() <= 1e-9).collect();
+    assert!(!midx.is_empty());
+    assert_eq!(got.node_groups["MIDX"], midx);
+    // INFO=2 summary of LIRE_MAILLAGE in the message file.
+    let mess = std::fs::read_to_string(dir.join("defi.out").join("defi.mess")).unwrap();
+    assert!(mess.contains(&format!("nodes: {}", m.nnodes())), "message file lacks the INFO=2 summary");
+}
+
+#[test]
+fn noeud_ordo_on_a_quad8_box() {
+    let dir = scratch("ordo");
+    let src_mesh = dir.join("q8.med");
+    let mesh = box_mesh(CellType::Quad8, &[4, 2], &[4.0, 1.0]).unwrap();
+    med::write_mesh(&src_mesh, &mesh, "MAIL").unwrap();
+    // Corner nodes of the bottom edge.
+    let left = (0..mesh.nnodes()).find(|&n| mesh.coords[n] == [0.0, 0.0, 0.0]).unwrap();
+    let right = (0..mesh.nnodes()).find(|&n| mesh.coords[n] == [4.0, 0.0, 0.0]).unwrap();
+    let (ln, rn) = (&mesh.node_names[left], &mesh.node_names[right]);
+    let result = dir.join("out.rmed");
+    let comm = format!(
+        r#"
+DEBUT()
+MAIL = LIRE_MAILLAGE(FORMAT='MED')
+DEFI_GROUP(reuse=MAIL, MAILLAGE=MAIL, INFO=2, CREA_GROUP_NO=(
+    _F(NOM='A', NOEUD='{ln}'),
+    _F(NOM='B', NOEUD='{rn}'),
+    _F(NOM='FWD', OPTION='NOEUD_ORDO', GROUP_MA='BAS', GROUP_NO_ORIG='A', GROUP_NO_EXTR='B'),
+    _F(NOM='BWD', OPTION='NOEUD_ORDO', GROUP_MA='BAS', GROUP_NO_ORIG='B'),
+))
+IMPR_RESU(FORMAT='MED', RESU=_F(MAILLAGE=MAIL))
+FIN()
+"#
+    );
+    run_ok(&dir, "ordo", &comm, &[(20, &src_mesh), (80, &result)]);
+    let got = med::read_mesh(&result, None).unwrap();
+    let mut bottom: Vec<usize> = (0..mesh.nnodes()).filter(|&n| mesh.coords[n][1] == 0.0).collect();
+    bottom.sort_by(|&a, &b| mesh.coords[a][0].partial_cmp(&mesh.coords[b][0]).unwrap());
+    assert_eq!(bottom.len(), 2 * 4 + 1);
+    let mut sorted = bottom.clone();
+    sorted.sort_unstable();
+    assert_eq!(got.node_groups["FWD"], sorted);
+    assert_eq!(got.node_groups["BWD"], sorted);
+    assert_eq!(listed(&dir, "ordo", "nodes of group FWD:"), names(&mesh, &bottom));
+    bottom.reverse();
+    assert_eq!(listed(&dir, "ordo", "nodes of group BWD:"), names(&mesh, &bottom));
+}
+
+#[test]
+fn astest_defi_group_options() {
+    let dir = scratch("astest");
+    // wtna113d: CREA_GROUP_MA copies, TOUT, NOEUD_ORDO from N3 to N4.
+    if let Some(mm) = astest("wtna113a.mmed") {
+        let mesh = med::read_mesh(&mm, None).unwrap();
+        let result = dir.join("wtna.rmed");
+        let comm = r#"
+DEBUT()
+MAILLAGE = LIRE_MAILLAGE(FORMAT="MED")
+MAILLAGE = DEFI_GROUP(reuse=MAILLAGE, MAILLAGE=MAILLAGE, INFO=2,
+    CREA_GROUP_MA=(_F(NOM="down", GROUP_MA="GM8"), _F(NOM="up", GROUP_MA="GM7"), _F(NOM="ROCHE", TOUT="OUI")),
+    CREA_GROUP_NO=(
+        _F(GROUP_MA="down"),
+        _F(NOM="up", GROUP_MA="up", OPTION="NOEUD_ORDO", GROUP_NO_ORIG="N3", GROUP_NO_EXTR="N4"),
+        _F(GROUP_MA="ROCHE"),
+    ),
+)
+IMPR_RESU(FORMAT="MED", UNITE=80, RESU=_F(MAILLAGE=MAILLAGE))
+FIN()
+"#;
+        run_ok(&dir, "wtna", comm, &[(20, &mm), (80, &result)]);
+        let got = med::read_mesh(&result, None).unwrap();
+        assert_eq!(got.cell_groups["up"], mesh.cell_groups["GM7"]);
+        assert_eq!(got.cell_groups["ROCHE"], (0..mesh.ncells()).collect::<Vec<_>>());
+        assert_eq!(got.node_groups["down"], nodes_of(&mesh, &mesh.cell_groups["GM8"], false));
+        assert_eq!(got.node_groups["ROCHE"], (0..mesh.nnodes()).collect::<Vec<_>>());
+        // The ordered line: the nodes of GM7, from N3's node to N4's, each
+        // farther from the origin than the previous one (a straight edge).
+        assert_eq!(got.node_groups["up"], nodes_of(&mesh, &mesh.cell_groups["GM7"], false));
+        let index: std::collections::HashMap<&str, usize> =
+            mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+        let listed_up = listed(&dir, "wtna", "nodes of group up:");
+        let up: Vec<usize> = listed_up.iter().map(|n| index[n.as_str()]).collect();
+        let mut set = up.clone();
+        set.sort_unstable();
+        assert_eq!(set, got.node_groups["up"]);
+        assert_eq!(up[0], mesh.node_groups["N3"][0]);
+        assert_eq!(*up.last().unwrap(), mesh.node_groups["N4"][0]);
+        let o = mesh.coords[up[0]];
+        let dist = |n: usize| (0..3).map(|k| (mesh.coords[n][k] - o[k]).powi(2)).sum::<f64>().sqrt();
+        assert!(up.windows(2).all(|w| dist(w[1]) > dist(w[0])), "not ordered along the line");
+    }
+    // ssnv508a: OPTION='PLAN' in 2D, and CREA_GROUP_NO with NOM over a GROUP_MA.
+    if let Some(mm) = astest("ssnv508a.mmed") {
+        let mesh = med::read_mesh(&mm, None).unwrap();
+        let result = dir.join("ssnv.rmed");
+        let comm = r#"
+DEBUT()
+MAILLAG1 = LIRE_MAILLAGE(FORMAT="MED", INFO=1)
+MAILLAG1 = DEFI_GROUP(reuse=MAILLAG1, MAILLAGE=MAILLAG1, CREA_GROUP_NO=_F(GROUP_MA="MTOT", NOM="SURF"))
+MAILLAG1 = DEFI_GROUP(reuse=MAILLAG1, MAILLAGE=MAILLAG1,
+    CREA_GROUP_NO=(_F(NOM="L1", OPTION="PLAN", POINT=(0, 0), VECT_NORMALE=(1, 0), PRECISION=0.00001),))
+IMPR_RESU(FORMAT="MED", UNITE=80, RESU=_F(MAILLAGE=MAILLAG1))
+FIN()
+"#;
+        run_ok(&dir, "ssnv", comm, &[(20, &mm), (80, &result)]);
+        let got = med::read_mesh(&result, None).unwrap();
+        let l1: Vec<usize> = (0..mesh.nnodes()).filter(|&n| mesh.coords[n][0].abs() <= 1e-5).collect();
+        assert!(!l1.is_empty());
+        assert_eq!(got.node_groups["L1"], l1);
+        assert_eq!(got.node_groups["SURF"], nodes_of(&mesh, &mesh.cell_groups["MTOT"], false));
+    }
+    // wtnl100b: CRIT_NOEUD='SOMMET'.
+    if let Some(mm) = astest("wtnl100b.mmed") {
+        let mesh = med::read_mesh(&mm, None).unwrap();
+        let result = dir.join("wtnl.rmed");
+        let comm = r#"
+DEBUT()
+MAIL = LIRE_MAILLAGE(FORMAT="MED")
+MAIL = DEFI_GROUP(reuse=MAIL, MAILLAGE=MAIL, CREA_GROUP_NO=_F(NOM="HAUTS", CRIT_NOEUD="SOMMET", GROUP_MA="FACESUP"))
+IMPR_RESU(FORMAT="MED", UNITE=80, RESU=_F(MAILLAGE=MAIL))
+FIN()
+"#;
+        run_ok(&dir, "wtnl", comm, &[(20, &mm), (80, &result)]);
+        let got = med::read_mesh(&result, None).unwrap();
+        let want = nodes_of(&mesh, &mesh.cell_groups["FACESUP"], true);
+        assert_eq!(want.len(), 4);
+        assert_eq!(got.node_groups["HAUTS"], want);
+    }
+    // zzzz325b: TYPE_MAILLE filter over TOUT.
+    if let Some(mm) = astest("zzzz325b.med") {
+        let mesh = med::read_mesh(&mm, None).unwrap();
+        let result = dir.join("zzzz.rmed");
+        let comm = r#"
+DEBUT()
+MA = LIRE_MAILLAGE(FORMAT="MED", INFO=2, UNITE=20)
+MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_MA=_F(NOM="LIGNE", TYPE_MAILLE=("SEG2"), TOUT="OUI"))
+IMPR_RESU(FORMAT="MED", UNITE=80, RESU=_F(MAILLAGE=MA))
+FIN()
+"#;
+        run_ok(&dir, "zzzz", comm, &[(20, &mm), (80, &result)]);
+        let got = med::read_mesh(&result, None).unwrap();
+        let segs: Vec<usize> = (0..mesh.ncells()).filter(|&c| mesh.cell_types[c] == CellType::Seg2).collect();
+        assert_eq!(segs.len(), 12);
+        assert_eq!(got.cell_groups["LIGNE"], segs);
+    }
+}
+
+#[test]
+fn diff_against_itself_and_a_perturbed_copy() {
+    let dir = scratch("diff");
+    let mesh = box_mesh(CellType::Quad4, &[3, 2], &[3.0, 2.0]).unwrap();
+    let nn = mesh.nnodes();
+    let values =
+        |t: f64| -> Vec<f64> { (0..nn).flat_map(|i| [t * mesh.coords[i][0], t * mesh.coords[i][1] + 1.0]).collect() };
+    let a = dir.join("a.rmed");
+    med::write_mesh(&a, &mesh, "MAIL").unwrap();
+    med::write_node_field(&a, "MAIL", "DEPL", &["DX", "DY"], &[(1, 0.5, values(0.5)), (2, 1.0, values(1.0))]).unwrap();
+    // The copy: DY of node index 5 at step 2 moved by 2.5e-3.
+    let b = dir.join("b.rmed");
+    med::write_mesh(&b, &mesh, "MAIL").unwrap();
+    let mut v2 = values(1.0);
+    let base = v2[5 * 2 + 1];
+    v2[5 * 2 + 1] += 2.5e-3;
+    let delta = v2[5 * 2 + 1] - base; // the exact difference in floating point
+    med::write_node_field(&b, "MAIL", "DEPL", &["DX", "DY"], &[(1, 0.5, values(0.5)), (2, 1.0, v2.clone())]).unwrap();
+
+    let o = aster().arg("diff").arg(&a).arg(&a).output().unwrap();
+    let (out, err) = text(&o);
+    assert_eq!(o.status.code(), Some(0), "{out}{err}");
+    let field_lines: Vec<&str> = out.lines().filter(|l| l.starts_with("field DEPL")).collect();
+    assert_eq!(field_lines.len(), 4, "{out}");
+    assert!(field_lines.iter().all(|l| l.contains("max |a-b| = 0.000000e0")), "{out}");
+
+    let o = aster().arg("diff").arg(&a).arg(&b).output().unwrap();
+    let (out, err) = text(&o);
+    assert_eq!(o.status.code(), Some(1), "{out}{err}");
+    let dy2 = out.lines().find(|l| l.starts_with("field DEPL DY step 2")).unwrap();
+    let want = format!("max |a-b| = {delta:.6e} at {}", mesh.node_names[5]);
+    assert!(dy2.contains(&want), "{dy2} lacks {want}");
+    let rel = delta / base.abs().max(v2[5 * 2 + 1].abs());
+    assert!(dy2.contains(&format!("max rel = {rel:.6e} at {}", mesh.node_names[5])), "{dy2}");
+    assert!(dy2.ends_with("DIFFERENT"), "{dy2}");
+    let dx2 = out.lines().find(|l| l.starts_with("field DEPL DX step 2")).unwrap();
+    assert!(dx2.contains("max |a-b| = 0.000000e0") && dx2.ends_with("OK"), "{dx2}");
+
+    // Within a loose tolerance.
+    let o = aster().arg("diff").arg(&a).arg(&b).args(["--atol", "1e-2"]).output().unwrap();
+    assert_eq!(o.status.code(), Some(0), "{:?}", text(&o));
+    // Errors: a missing file exits with 2.
+    let o = aster().arg("diff").arg(&a).arg(dir.join("missing.rmed")).output().unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).1.contains("missing.rmed"), "{:?}", text(&o));
+}
+
+/// Run a command file expected to fail; returns stderr.
+fn run_fail(dir: &Path, name: &str, src: &str, units: &[(i64, &Path)]) -> String {
+    let o = run_comm(dir, name, src, units);
+    let (out, err) = text(&o);
+    assert!(!o.status.success(), "{name} should have failed:\n{out}\n{err}");
+    err
+}
+
+#[test]
+fn bad_input_is_a_located_error() {
+    let dir = scratch("bad");
+    let good = dir.join("good.med");
+    med::write_mesh(&good, &box_mesh(CellType::Quad4, &[2, 2], &[1.0, 1.0]).unwrap(), "MAIL").unwrap();
+    let bytes = std::fs::read(&good).unwrap();
+    let truncated = dir.join("truncated.med");
+    std::fs::write(&truncated, &bytes[..bytes.len() / 2]).unwrap();
+    let text_file = dir.join("notmed.med");
+    std::fs::write(&text_file, "this is not an HDF5 file\n".repeat(100)).unwrap();
+    let read = "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED')\nFIN()\n";
+
+    let err = run_fail(&dir, "trunc", read, &[(20, &truncated)]);
+    assert!(err.contains("trunc.comm:2:") && err.contains("truncated"), "{err}");
+    let err = run_fail(&dir, "nothdf", read, &[(20, &text_file)]);
+    assert!(err.contains("nothdf.comm:2:") && err.contains("not an HDF5 file"), "{err}");
+    let err = run_fail(
+        &dir,
+        "nomesh",
+        "DEBUT()\n\nMA = LIRE_MAILLAGE(FORMAT='MED', NOM_MED='NOPE')\nFIN()\n",
+        &[(20, &good)],
+    );
+    assert!(err.contains("nomesh.comm:3:") && err.contains("no mesh named 'NOPE'"), "{err}");
+    let err = run_fail(&dir, "nounit", "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED', UNITE=21)\nFIN()\n", &[(20, &good)]);
+    assert!(err.contains("nounit.comm:2:") && err.contains("unit 21"), "{err}");
+    let err = run_fail(
+        &dir,
+        "nogroup",
+        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED')\nMA = DEFI_GROUP(reuse=MA, MAILLAGE=MA,\n    CREA_GROUP_NO=_F(GROUP_MA='NOPE'))\nFIN()\n",
+        &[(20, &good)],
+    );
+    assert!(err.contains("nogroup.comm:4:") && err.contains("group of cells 'NOPE' is not in mesh MA"), "{err}");
+    let err = run_fail(
+        &dir,
+        "nonode",
+        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED')\nDEFI_GROUP(reuse=MA, MAILLAGE=MA,\n    CREA_GROUP_NO=_F(NOM='X', NOEUD=('N1', 'N999')))\nFIN()\n",
+        &[(20, &good)],
+    );
+    assert!(err.contains("nonode.comm:4:") && err.contains("node 'N999' is not in mesh MA"), "{err}");
+    let err = run_fail(
+        &dir,
+        "dupgroup",
+        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED')\nDEFI_GROUP(reuse=MA, MAILLAGE=MA,\n    CREA_GROUP_NO=_F(GROUP_MA='BAS'))\nFIN()\n",
+        &[(20, &good)],
+    );
+    assert!(err.contains("dupgroup.comm:4:") && err.contains("group of nodes 'BAS' already exists"), "{err}");
+    let err = run_fail(
+        &dir,
+        "fmt",
+        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED')\nIMPR_RESU(FORMAT='RESULTAT', RESU=_F(MAILLAGE=MA))\nFIN()\n",
+        &[(20, &good)],
+    );
+    assert!(err.contains("fmt.comm:3:") && err.contains("FORMAT='RESULTAT' is not supported yet"), "{err}");
+    // `aster mesh info` on damaged files.
+    for f in [&truncated, &text_file] {
+        let o = aster().args(["mesh", "info"]).arg(f).output().unwrap();
+        assert_eq!(o.status.code(), Some(2));
+        assert!(text(&o).1.contains(f.file_name().unwrap().to_str().unwrap()), "{:?}", text(&o));
+    }
+}

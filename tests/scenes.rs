@@ -1,0 +1,41 @@
+//! Our own scenes (comm/*.export) run end to end with every check OK.
+
+use aster::runner::{self, RunOptions};
+use std::path::Path;
+
+#[test]
+fn every_scene_runs_ok() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("comm");
+    let mut exports: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().map(|x| x == "export").unwrap_or(false))
+        .collect();
+    exports.sort();
+    assert!(exports.len() >= 2, "comm/ should hold our scenes");
+    let out = std::env::temp_dir().join(format!("aster-scenes-{}", std::process::id()));
+    let opts = RunOptions { out_dir: Some(out.clone()), units: Vec::new(), echo: false };
+    let mut failures = Vec::new();
+    for e in &exports {
+        let o = runner::run_export(e, &opts);
+        println!("{:<24} {:<16} {} OK {} NOOK {:.3} s", o.name, o.diagnostic, o.ok_count(), o.nook_count(), o.seconds);
+        if o.diagnostic != "OK" || o.ok_count() == 0 {
+            failures.push(format!("{}: {} {}", o.name, o.diagnostic, o.error.unwrap_or_default()));
+        }
+    }
+    let _ = std::fs::remove_dir_all(&out);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn the_default_scene_is_a_comm_file() {
+    let (file, src) = runner::DEFAULT_SCENE;
+    let on_disk = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("comm").join(file)).unwrap();
+    assert_eq!(src, on_disk);
+    let o = runner::run_default(&RunOptions {
+        out_dir: Some(std::env::temp_dir().join(format!("aster-default-{}", std::process::id()))),
+        units: Vec::new(),
+        echo: false,
+    });
+    assert_eq!(o.diagnostic, "OK", "{:?}", o.error);
+}
