@@ -59,7 +59,13 @@ fn elastic_of(m: &Material, cell: &str) -> Result<IsoElastic> {
         _ if m.behaviours.contains_key("ELAS_FO") => {
             Err(Error::runtime(format!("cell {cell}: ELAS_FO (temperature-dependent elasticity) is not supported yet")))
         }
-        _ => Err(Error::runtime(format!("cell {cell}: the material has no ELAS (E, NU)"))),
+        _ => {
+            let others: Vec<&str> = m.behaviours.keys().map(String::as_str).collect();
+            Err(Error::runtime(format!(
+                "cell {cell}: the material has no ELAS (E, NU); it defines {}, which this command does not support yet",
+                if others.is_empty() { "nothing".to_string() } else { others.join(", ") }
+            )))
+        }
     }
 }
 
