@@ -293,15 +293,7 @@ impl DofMap {
             }
             ptr.push(all_terms.len());
         }
-        Ok(DofMap {
-            nfull: n,
-            nfree: free_to_full.len(),
-            ptr,
-            terms: all_terms,
-            constant,
-            free_to_full,
-            n_redundant,
-        })
+        Ok(DofMap { nfull: n, nfree: free_to_full.len(), ptr, terms: all_terms, constant, free_to_full, n_redundant })
     }
 
     /// Number of eliminated equations (imposed + slave dofs).

@@ -153,14 +153,13 @@ impl IsoElastic {
             d[3][3] = mu;
             return d;
         }
-        for i in 0..3 {
-            for j in 0..3 {
-                d[i][j] = l;
+        for (i, row) in d.iter_mut().enumerate().take(m.nsig()) {
+            if i < 3 {
+                row[..3].fill(l);
+                row[i] = l + 2.0 * mu;
+            } else {
+                row[i] = mu;
             }
-            d[i][i] = l + 2.0 * mu;
-        }
-        for k in 3..m.nsig() {
-            d[k][k] = mu;
         }
         d
     }
@@ -532,6 +531,7 @@ pub fn vertex_type(t: CellType) -> CellType {
     }
 }
 
+#[allow(clippy::needless_range_loop)]
 /// Code_Aster's Gauss → node extrapolation matrix of `rule` on `t`:
 /// `m[node][gauss]` (see the module documentation).
 pub fn gauss_to_node_matrix(t: CellType, rule: &QuadratureRule) -> Vec<Vec<f64>> {
@@ -610,6 +610,12 @@ pub fn gauss_to_nodes(t: CellType, values: &[[f64; 6]], ncmp: usize) -> Vec<[f64
         .collect()
 }
 
+/// Values at the nodes of a cell: (strains, stresses).
+pub type NodeFields = (Vec<[f64; 6]>, Vec<[f64; 6]>);
+
+/// A surface traction density as a function of (point, unit normal).
+pub type TractionFn<'a> = dyn Fn(&[f64; 3], &[f64; 3]) -> [f64; 3] + 'a;
+
 /// `SIGM_ELNO` and `EPSI_ELNO` of a cell: (strains, stresses) at its nodes.
 pub fn node_fields(
     m: Modelisation,
@@ -617,7 +623,7 @@ pub fn node_fields(
     t: CellType,
     coords: &[[f64; 3]],
     u: &[f64],
-) -> Result<(Vec<[f64; 6]>, Vec<[f64; 6]>), ElementError> {
+) -> Result<NodeFields, ElementError> {
     let g = gauss_fields(m, mat, t, coords, u)?;
     Ok((gauss_to_nodes(t, &g.eps, m.nsig()), gauss_to_nodes(t, &g.sig, m.nsig())))
 }
@@ -663,11 +669,7 @@ pub struct BoundaryPoint {
 
 /// Gauss points of a boundary (skin) cell: SEG2/SEG3 in 2D (`dim = 2`),
 /// TRIA3/6, QUAD4/8/9 in 3D.
-pub fn boundary_points(
-    m: Modelisation,
-    t: CellType,
-    coords: &[[f64; 3]],
-) -> Result<Vec<BoundaryPoint>, ElementError> {
+pub fn boundary_points(m: Modelisation, t: CellType, coords: &[[f64; 3]]) -> Result<Vec<BoundaryPoint>, ElementError> {
     if !m.accepts_boundary_cell(t) {
         return Err(ElementError::WrongCellType { cell_type: t, modelisation: m });
     }
@@ -714,7 +716,7 @@ pub fn boundary_force(
     m: Modelisation,
     t: CellType,
     coords: &[[f64; 3]],
-    f: &dyn Fn(&[f64; 3], &[f64; 3]) -> [f64; 3],
+    f: &TractionFn<'_>,
 ) -> Result<Vec<f64>, ElementError> {
     let pts = boundary_points(m, t, coords)?;
     let (dim, nno) = (m.dim(), t.nnodes());

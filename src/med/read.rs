@@ -187,6 +187,7 @@ pub fn read_mesh(path: &Path, mesh_name: Option<&str>) -> Result<Mesh> {
             c
         })
         .collect();
+    let named_nodes = open_ds(path, &noe, "NOM")?.is_some();
     let node_names = match open_ds(path, &noe, "NOM")? {
         Some(ds) => {
             let v = read_names::<SNAME>(path, &ds)?;
@@ -219,7 +220,7 @@ pub fn read_mesh(path: &Path, mesh_name: Option<&str>) -> Result<Mesh> {
     }
     by_type.sort_by_key(|(mt, _)| mt.geo);
 
-    let mut mesh = Mesh { dim: esp, coords, node_names, ..Mesh::default() };
+    let mut mesh = Mesh { dim: esp, coords, node_names, named_nodes, ..Mesh::default() };
     let mut cell_fam: Vec<i64> = Vec::new();
     for (mt, g) in &by_type {
         let nod = open_ds(path, g, "NOD")?

@@ -82,7 +82,7 @@ pub fn box_mesh(cell: CellType, n: &[usize], size: &[f64]) -> Result<Mesh> {
 
     // Nodes: grid points with at most one odd index (all of them when linear).
     let mut grid = Grid { q, m, id: vec![usize::MAX; npoints] };
-    let mut mesh = Mesh { dim, ..Mesh::default() };
+    let mut mesh = Mesh { dim, named_nodes: true, ..Mesh::default() };
     for k in 0..=m[2] {
         for j in 0..=m[1] {
             for i in 0..=m[0] {

@@ -141,6 +141,9 @@ pub struct Mesh {
     pub cell_names: Vec<String>,
     pub node_groups: BTreeMap<String, Vec<usize>>,
     pub cell_groups: BTreeMap<String, Vec<usize>>,
+    /// False when the file gave no node names: they were made up as N1, N2, ...
+    /// (Code_Aster then shows node numbers in tables).
+    pub named_nodes: bool,
 }
 
 impl Mesh {

@@ -58,6 +58,12 @@ fn parse_summary(name: &str, text: &str) -> CaseResult {
     }
 }
 
+impl CaseResult {
+    fn error(name: String, seconds: f64, msg: String) -> CaseResult {
+        CaseResult { name, diagnostic: "<F>_ERROR".into(), ok: 0, nook: 0, skip: 0, seconds, error: Some(msg) }
+    }
+}
+
 fn run_one(exe: &Path, export: &Path, out: &Path) -> CaseResult {
     let name = export.file_stem().and_then(|s| s.to_str()).unwrap_or("?").to_string();
     let limit = Export::read(export)
@@ -81,17 +87,7 @@ fn run_one(exe: &Path, export: &Path, out: &Path) -> CaseResult {
         .spawn();
     let mut child = match child {
         Ok(c) => c,
-        Err(e) => {
-            return CaseResult {
-                name,
-                diagnostic: "<F>_ERROR".into(),
-                ok: 0,
-                nook: 0,
-                skip: 0,
-                seconds: 0.0,
-                error: Some(e.to_string()),
-            }
-        }
+        Err(e) => return CaseResult::error(name, 0.0, e.to_string()),
     };
     loop {
         match child.try_wait() {
@@ -99,41 +95,21 @@ fn run_one(exe: &Path, export: &Path, out: &Path) -> CaseResult {
             Ok(None) if t0.elapsed().as_secs_f64() > limit => {
                 let _ = child.kill();
                 let _ = child.wait();
-                return CaseResult {
+                return CaseResult::error(
                     name,
-                    diagnostic: "<F>_ERROR".into(),
-                    ok: 0,
-                    nook: 0,
-                    skip: 0,
-                    seconds: t0.elapsed().as_secs_f64(),
-                    error: Some(format!("time limit of {limit} s exceeded")),
-                };
+                    t0.elapsed().as_secs_f64(),
+                    format!("time limit of {limit} s exceeded"),
+                );
             }
             Ok(None) => std::thread::sleep(Duration::from_millis(20)),
-            Err(e) => {
-                return CaseResult {
-                    name,
-                    diagnostic: "<F>_ERROR".into(),
-                    ok: 0,
-                    nook: 0,
-                    skip: 0,
-                    seconds: 0.0,
-                    error: Some(e.to_string()),
-                }
-            }
+            Err(e) => return CaseResult::error(name, 0.0, e.to_string()),
         }
     }
     match std::fs::read_to_string(&summary) {
         Ok(t) => parse_summary(&name, &t),
-        Err(_) => CaseResult {
-            name,
-            diagnostic: "<F>_ERROR".into(),
-            ok: 0,
-            nook: 0,
-            skip: 0,
-            seconds: t0.elapsed().as_secs_f64(),
-            error: Some("the case stopped without a summary (crash)".into()),
-        },
+        Err(_) => {
+            CaseResult::error(name, t0.elapsed().as_secs_f64(), "the case stopped without a summary (crash)".into())
+        }
     }
 }
 

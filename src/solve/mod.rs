@@ -288,16 +288,17 @@ pub fn factorize(
                     sv.push(v[p] * scale[ri[p]] * scale[j]);
                 }
             }
-            let sym =
-                SymbolicSparseColMat::new_checked(n, n, cp.to_vec(), a.symbolic().col_nnz().map(|c| c.to_vec()), ri.to_vec());
+            let sym = SymbolicSparseColMat::new_checked(
+                n,
+                n,
+                cp.to_vec(),
+                a.symbolic().col_nnz().map(|c| c.to_vec()),
+                ri.to_vec(),
+            );
             let scaled = SparseColMat::new(sym, sv);
-            let symbolic = factorize_symbolic_cholesky(
-                scaled.symbolic(),
-                Side::Lower,
-                SymmetricOrdering::Amd,
-                Default::default(),
-            )
-            .map_err(|e| SolveError::Internal(format!("{e:?}")))?;
+            let symbolic =
+                factorize_symbolic_cholesky(scaled.symbolic(), Side::Lower, SymmetricOrdering::Amd, Default::default())
+                    .map_err(|e| SolveError::Internal(format!("{e:?}")))?;
             timings.symbolic = t0.elapsed();
             let t1 = Instant::now();
             let par = Par::Seq;
@@ -404,7 +405,7 @@ pub fn solve(a: SparseColMatRef<'_, usize, f64>, b: &[f64], opts: &SolverOptions
     let x = fact.solve(b);
     let residual = relative_residual(a, &x, b);
     timings.solve = t.elapsed();
-    if x.iter().any(|v| !v.is_finite()) || (opts.resi_rela >= 0.0 && !(residual <= opts.resi_rela)) {
+    if x.iter().any(|v| !v.is_finite()) || (opts.resi_rela >= 0.0 && (residual.is_nan() || residual > opts.resi_rela)) {
         // Report the equations with the largest residual.
         let ax = matvec(a, &x);
         let mut idx: Vec<usize> = (0..b.len()).collect();

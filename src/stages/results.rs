@@ -276,7 +276,9 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 if let Some(c) = cell {
                     row.push(("MAILLE".to_string(), Cell::Text(mesh.cell_names[c].clone())));
                 }
-                row.push(("NOEUD".to_string(), Cell::Text(mesh.node_names[node].clone())));
+                // Code_Aster shows node numbers for meshes whose file gave no node names.
+                let label = if mesh.named_nodes { mesh.node_names[node].clone() } else { (node + 1).to_string() };
+                row.push(("NOEUD".to_string(), Cell::Text(label)));
                 let xyz = ["COOR_X", "COOR_Y", "COOR_Z"];
                 for (d, name) in xyz.iter().enumerate().take(mesh.dim.max(2)) {
                     row.push((name.to_string(), Cell::Real(mesh.coords[node][d])));

@@ -167,6 +167,14 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let mut cons = Constraints::new();
     let mut forces: Vec<(Vec<usize>, Vec<f64>)> = Vec::new();
     let model_ref = model_of(&model)?;
+    // The dofs of a boundary cell carrying a surface load; the cell must be a skin element of the model.
+    let skin_dofs = |c: usize| -> Result<Vec<usize>> {
+        let on_skin = model_ref.elements[c].as_ref().map(|e| e.role) == Some(Role::Skin);
+        match p.numbering.cell_dofs(&mesh.cells[c]) {
+            Some(d) if on_skin => Ok(d),
+            _ => Err(a.err("EXCIT", format!("cell {} is not a boundary cell of the model", mesh.cell_names[c]))),
+        }
+    };
     for (lc, mult) in loads(a, inst)? {
         let data = lc.data();
         let ConceptData::Load(Load { items, model: lmodel, .. }) = &*data else {
@@ -232,16 +240,7 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 }
                 LoadItem::SurfaceForce { cells, components } => {
                     for &c in cells {
-                        if model_ref.elements[c].as_ref().map(|e| e.role) != Some(Role::Skin) {
-                            return Err(a.err(
-                                "EXCIT",
-                                format!(
-                                    "load {}: cell {} is not a boundary cell of the model",
-                                    lc.label(),
-                                    mesh.cell_names[c]
-                                ),
-                            ));
-                        }
+                        let dofs = skin_dofs(c)?;
                         let xs = coords_of(mesh, c);
                         let err = std::cell::RefCell::new(None);
                         let f = |x: &[f64; 3], _n: &[f64; 3]| -> [f64; 3] {
@@ -264,34 +263,17 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                         if let Some(e) = err.into_inner() {
                             return Err(e.at(a.span));
                         }
-                        let dofs = p
-                            .numbering
-                            .cell_dofs(&mesh.cells[c])
-                            .ok_or_else(|| a.err("EXCIT", "boundary cell off the model"))?;
                         forces.push((dofs, fe));
                     }
                 }
                 LoadItem::Pressure { cells, value } => {
                     for &c in cells {
-                        if model_ref.elements[c].as_ref().map(|e| e.role) != Some(Role::Skin) {
-                            return Err(a.err(
-                                "EXCIT",
-                                format!(
-                                    "load {}: cell {} is not a boundary cell of the model",
-                                    lc.label(),
-                                    mesh.cell_names[c]
-                                ),
-                            ));
-                        }
+                        let dofs = skin_dofs(c)?;
                         let xs = coords_of(mesh, c);
                         let pres: Vec<f64> =
                             xs.iter().map(|x| load_value(value, x, inst).map(|v| v * mult)).collect::<Result<_>>()?;
                         let fe = elasticity::pressure_force(md, mesh.cell_types[c], &xs, &pres, None)
                             .map_err(|e| Error::runtime(e.to_string()))?;
-                        let dofs = p
-                            .numbering
-                            .cell_dofs(&mesh.cells[c])
-                            .ok_or_else(|| a.err("EXCIT", "boundary cell off the model"))?;
                         forces.push((dofs, fe));
                     }
                 }
