@@ -1,0 +1,95 @@
+//! Bad input to the finite-element stages: each a located error, a non-zero
+//! exit and a message that names the entity.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("aster-fe-errors-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// A QUAD4 block 2 x 1 (groups BAS, DROITE, HAUT, GAUCHE, SURFACE) written by our MED writer.
+fn mesh(dir: &Path) -> PathBuf {
+    let p = dir.join("block.med");
+    let out = Command::new(env!("CARGO_BIN_EXE_aster"))
+        .args(["mesh", "box", "--cell", "QUAD4", "--n", "2,1", "--size", "2,1", "-o"])
+        .arg(&p)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    p
+}
+
+const HEAD: &str = "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED')\n\
+MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='D_PLAN'))\n\
+ACIER = DEFI_MATERIAU(ELAS=_F(E=2.0e5, NU=0.3))\n";
+
+fn run(name: &str, body: &str) -> (i32, String) {
+    let dir = scratch(name);
+    let m = mesh(&dir);
+    std::fs::write(dir.join("case.comm"), format!("{HEAD}{body}")).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_aster"))
+        .arg("run")
+        .arg(dir.join("case.comm"))
+        .args(["--out", dir.to_str().unwrap(), "-q", "--unit"])
+        .arg(format!("20={}", m.display()))
+        .output()
+        .unwrap();
+    (out.status.code().unwrap_or(-1), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+#[test]
+fn missing_material_on_a_cell() {
+    let (code, err) = run(
+        "material",
+        "MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_MA=_F(NOM='M1ONLY', MAILLE='M1'))\n\
+         CHMAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(GROUP_MA='M1ONLY', MATER=ACIER))\n\
+         CH = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='GAUCHE', DX=0., DY=0.))\n\
+         R = MECA_STATIQUE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=CH))\n",
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("case.comm:8:5: MECA_STATIQUE: cell") && err.contains("has no material (AFFE_MATERIAU)"),
+        "{err}"
+    );
+}
+
+#[test]
+fn load_on_an_unknown_group() {
+    let (code, err) = run("group", "CH = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='LEFT', DX=0.))\n");
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("case.comm:5:")
+            && err.contains("AFFE_CHAR_MECA: DDL_IMPO/GROUP_NO: group of nodes 'LEFT' is not in mesh MA"),
+        "{err}"
+    );
+}
+
+#[test]
+fn rigid_body_motion_is_reported_as_singular() {
+    let (code, err) = run(
+        "singular",
+        "CHMAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=ACIER))\n\
+         CH = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='GAUCHE', DX=0.))\n\
+         R = MECA_STATIQUE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=CH))\n",
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("case.comm:7:48: MECA_STATIQUE: EXCIT: the system is singular"), "{err}");
+    // The free motion is a vertical translation: the unknowns named are DY.
+    assert!(err.contains(" DY"), "{err}");
+}
+
+#[test]
+fn component_foreign_to_the_model() {
+    let (code, err) = run(
+        "component",
+        "CHMAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=ACIER))\n\
+         CH = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='GAUCHE', DX=0., DY=0., DZ=0.))\n\
+         R = MECA_STATIQUE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=CH))\n",
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("component DZ is not a dof of a D_PLAN model"), "{err}");
+}
