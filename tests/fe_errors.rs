@@ -93,3 +93,20 @@ fn component_foreign_to_the_model() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("component DZ is not a dof of a D_PLAN model"), "{err}");
 }
+
+#[test]
+fn newton_that_does_not_converge() {
+    let (code, err) = run(
+        "newton",
+        "CHMAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=ACIER))\n\
+         CH = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=(_F(GROUP_NO='GAUCHE', DX=0., DY=0.), _F(GROUP_NO='DROITE', DX=0.01)))\n\
+         L = DEFI_LIST_REEL(VALE=(0., 1.))\n\
+         R = STAT_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=CH), COMPORTEMENT=_F(RELATION='ELAS'),\n\
+             INCREMENT=_F(LIST_INST=L), CONVERGENCE=_F(RESI_GLOB_RELA=1.e-30, ITER_GLOB_MAXI=3))\n",
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("case.comm:9:28: STAT_NON_LINE: CONVERGENCE: Newton did not converge at INST=1 in 3 iterations"),
+        "{err}"
+    );
+}

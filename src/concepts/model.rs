@@ -53,6 +53,15 @@ pub fn role_of(dim: usize, t: CellType) -> Option<Role> {
 }
 
 impl Model {
+    /// The mesh as it is now: DEFI_GROUP and MODI_MAILLAGE change a mesh in
+    /// place after the model was made, and the model must see it.
+    pub fn current_mesh(&self) -> Rc<Mesh> {
+        match &*self.mesh_concept.data() {
+            super::ConceptData::Mesh(m) => m.clone(),
+            _ => self.mesh.clone(),
+        }
+    }
+
     /// The dimension of the model's bulk elements.
     pub fn dim(&self) -> usize {
         self.elements

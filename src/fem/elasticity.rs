@@ -273,7 +273,9 @@ pub fn gauss_geometry(
             }
         }
         let (det, inv) = inv_det(&j, dim);
-        if det.is_nan() || det <= 0.0 {
+        // Cells numbered clockwise have a negative Jacobian; like Code_Aster,
+        // integrate with its absolute value and refuse only degenerate cells.
+        if det.is_nan() || det == 0.0 {
             return Err(ElementError::BadJacobian { cell_type: t, gauss_point: g, det });
         }
         let mut dn = [[0.0; 3]; MAX_NODES];
@@ -282,7 +284,7 @@ pub fn gauss_geometry(
                 dn[a][i] = (0..dim).map(|k| dref[a][k] * inv[k][i]).sum();
             }
         }
-        let mut wd = w * det;
+        let mut wd = w * det.abs();
         if m == Modelisation::Axis {
             if x[0] <= 0.0 {
                 return Err(ElementError::NonPositiveRadius { gauss_point: g, r: x[0] });

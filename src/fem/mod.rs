@@ -6,6 +6,7 @@
 pub mod assembly;
 pub mod dofs;
 pub mod elasticity;
+pub mod geometry;
 pub mod quadrature;
 pub mod reference;
 

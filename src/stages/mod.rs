@@ -8,6 +8,9 @@ pub mod control;
 pub mod functions;
 pub mod mesh;
 pub mod model;
+pub mod nonlinear;
+pub mod orient;
+pub mod repere;
 pub mod results;
 pub mod statics;
 pub mod table_io;
@@ -99,7 +102,10 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "TEST_RESU" => results::test_resu,
         "MECA_STATIQUE" => statics::meca_statique,
         "CALC_CHAMP" => statics::calc_champ,
+        "STAT_NON_LINE" => nonlinear::stat_non_line,
         "POST_RELEVE_T" => results::post_releve_t,
+        "MODI_MAILLAGE" => orient::modi_maillage,
+        "MODI_REPERE" => repere::modi_repere,
         _ => return None,
     })
 }

@@ -10,6 +10,7 @@ use crate::concepts::model::{
 };
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
+use crate::fem::geometry;
 use crate::mesh::Mesh;
 use std::collections::{BTreeMap, HashMap};
 use std::rc::Rc;
@@ -193,7 +194,7 @@ pub fn affe_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         (Some(mc), _) => (mesh_of(&mc)?, mc.label()),
         (None, Some(mo)) => {
             let m = model_of(&mo)?;
-            (m.mesh.clone(), m.mesh_concept.label())
+            (m.current_mesh(), m.mesh_concept.label())
         }
         (None, None) => return Err(a.err("MAILLAGE", "MAILLAGE or MODELE is required")),
     };
@@ -214,7 +215,7 @@ pub fn affe_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 
 /// Load keywords we implement; any other factor keyword given is refused.
 const LOAD_KEYWORDS: &[&str] =
-    &["DDL_IMPO", "FORCE_NODALE", "FORCE_CONTOUR", "FORCE_FACE", "PRES_REP", "PESANTEUR", "LIAISON_DDL"];
+    &["DDL_IMPO", "FACE_IMPO", "FORCE_NODALE", "FORCE_CONTOUR", "FORCE_FACE", "PRES_REP", "PESANTEUR", "LIAISON_DDL"];
 const PLAIN_KEYWORDS: &[&str] = &["MODELE", "INFO", "VERI_AFFE", "VERI_NORM", "DOUBLE_LAGRANGE", "CHAM_MATER"];
 /// Keywords of DDL_IMPO / FORCE_* that select entities rather than give values.
 const SELECTORS: &[&str] = &["TOUT", "NOEUD", "GROUP_NO", "GROUP_MA", "MAILLE", "SANS_GROUP_MA", "SANS_GROUP_NO"];
@@ -247,7 +248,7 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
     let mo = a.req_concept("MODELE")?;
     let (mesh, name) = {
         let m = model_of(&mo)?;
-        (m.mesh.clone(), m.mesh_concept.label())
+        (m.current_mesh(), m.mesh_concept.label())
     };
     let mut items = Vec::new();
     for occ in a.facts("DDL_IMPO") {
@@ -265,6 +266,9 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
                 items.push(LoadItem::Dof { node, component: c.clone(), value: v.clone() });
             }
         }
+    }
+    for occ in a.facts("FACE_IMPO") {
+        items.extend(face_impo(&mesh, occ, &name, mo_dim(&mo)?, functional)?);
     }
     for occ in a.facts("FORCE_NODALE") {
         let comps = components(occ, &[]);
@@ -336,6 +340,94 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
         items.push(LoadItem::Relation { terms, value });
     }
     Ok(Some(ConceptData::Load(Load { model: mo, items, functional })))
+}
+
+fn mo_dim(mo: &ConceptRef) -> Result<usize> {
+    Ok(model_of(mo)?.dim())
+}
+
+/// FACE_IMPO: DX / DY / DZ on the nodes of the cells (less those of
+/// SANS_GROUP_MA and SANS_GROUP_NO), or DNOR: at each of those nodes
+/// `u · n = value`, with `n` the mean of the unit normals of the cells at the
+/// node (Code_Aster's `canort`), each cell's normal turned out of the cell
+/// it bounds where there is one on a single side.
+fn face_impo(mesh: &Mesh, occ: &Args, name: &str, dim: usize, functional: bool) -> Result<Vec<LoadItem>> {
+    for k in ["DRX", "DRY", "DRZ", "DRNOR", "DTAN", "GRX", "PRES", "PHI", "TEMP", "PRE1", "PRE2"] {
+        if occ.given(k) {
+            return Err(occ.err(k, "not supported yet"));
+        }
+    }
+    let mut cells = Vec::new();
+    for g in occ.texts("GROUP_MA") {
+        let members = mesh
+            .cell_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("GROUP_MA", format!("group of cells '{g}' is not in mesh {name}")))?;
+        cells.extend(members.iter().copied());
+    }
+    cells.sort_unstable();
+    cells.dedup();
+    let mut excluded: std::collections::HashSet<usize> = std::collections::HashSet::new();
+    for g in occ.texts("SANS_GROUP_MA") {
+        let members = mesh
+            .cell_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("SANS_GROUP_MA", format!("group of cells '{g}' is not in mesh {name}")))?;
+        excluded.extend(members.iter().flat_map(|&c| mesh.cells[c].iter().copied()));
+    }
+    for g in occ.texts("SANS_GROUP_NO") {
+        let members = mesh
+            .node_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("SANS_GROUP_NO", format!("group of nodes '{g}' is not in mesh {name}")))?;
+        excluded.extend(members.iter().copied());
+    }
+    let mut nodes: Vec<usize> = cells.iter().flat_map(|&c| mesh.cells[c].iter().copied()).collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    nodes.retain(|n| !excluded.contains(n));
+    let mut items = Vec::new();
+    if occ.given("DNOR") {
+        let value = occ.val("DNOR").and_then(load_value).ok_or_else(|| occ.err("DNOR", "a value is required"))?;
+        if functional || matches!(value, LoadValue::Func(_)) {
+            return Err(occ.err("DNOR", "DNOR given by a function is not supported yet"));
+        }
+        let node_cells = geometry::node_to_cells(mesh);
+        let mut signs = Vec::with_capacity(cells.len());
+        for &c in &cells {
+            let t = mesh.cell_types[c];
+            if !geometry::is_skin_type(t) || t.dim() + 1 != dim {
+                return Err(occ.err(
+                    "GROUP_MA",
+                    format!(
+                        "DNOR: cell {} is a {}; the normal is taken on {} of a {dim}D model",
+                        mesh.cell_names[c],
+                        t.name(),
+                        if dim == 2 { "segments (SEG2, SEG3)" } else { "faces (TRIA3/6, QUAD4/8/9)" }
+                    ),
+                ));
+            }
+            signs.push(geometry::outward_sign(mesh, &node_cells, c).unwrap_or(1.0));
+        }
+        let normals = geometry::averaged_node_normals(mesh, &cells, &signs).map_err(|e| occ.err("GROUP_MA", e))?;
+        for node in nodes {
+            let n = normals[&node];
+            let terms =
+                ["DX", "DY", "DZ"][..dim].iter().enumerate().map(|(k, c)| (node, c.to_string(), n[k])).collect();
+            items.push(LoadItem::Relation { terms, value: value.clone() });
+        }
+        return Ok(items);
+    }
+    let comps = components(occ, &[]);
+    if comps.is_empty() {
+        return Err(occ.err("GROUP_MA", "no component is prescribed"));
+    }
+    for node in nodes {
+        for (c, v) in &comps {
+            items.push(LoadItem::Dof { node, component: c.clone(), value: v.clone() });
+        }
+    }
+    Ok(items)
 }
 
 pub fn affe_char_meca(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {

@@ -19,7 +19,7 @@ pub fn result_of(c: &ConceptRef) -> Result<Ref<'_, ResultData>> {
 }
 
 fn mesh_of_result(r: &ResultData) -> Result<Rc<Mesh>> {
-    Ok(super::model::model_of(&r.model)?.mesh.clone())
+    Ok(super::model::model_of(&r.model)?.current_mesh())
 }
 
 /// The step an occurrence designates (NUME_ORDRE or INST; the only step otherwise).

@@ -70,17 +70,17 @@ fn elastic_of(m: &Material, cell: &str) -> Result<IsoElastic> {
 }
 
 /// What a linear elastic computation is built from, checked.
-struct Problem {
-    mesh: Rc<Mesh>,
-    modelisation: Modelisation,
-    bulk: Vec<usize>,
-    materials: Vec<Option<(IsoElastic, f64)>>,
-    numbering: DofNumbering,
+pub(super) struct Problem {
+    pub mesh: Rc<Mesh>,
+    pub modelisation: Modelisation,
+    pub bulk: Vec<usize>,
+    pub materials: Vec<Option<(IsoElastic, f64)>>,
+    pub numbering: DofNumbering,
 }
 
-fn problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<Problem> {
+pub(super) fn problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<Problem> {
     let m = model_of(model)?;
-    let mesh = m.mesh.clone();
+    let mesh = m.current_mesh();
     let mut modelisation = None;
     let mut bulk = Vec::new();
     for (c, e) in m.elements.iter().enumerate() {
@@ -142,27 +142,20 @@ fn loads(a: &Args, inst: f64) -> Result<Vec<(ConceptRef, f64)>> {
     Ok(out)
 }
 
-pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    for kw in ["CARA_ELEM", "LIST_INST", "SENSIBILITE"] {
-        if a.given(kw) {
-            return Err(a.err(kw, "not supported yet"));
-        }
-    }
-    if let Some(o) = a.text("OPTION") {
-        if o != "SIEF_ELGA" && o != "SANS" {
-            return Err(a.err("OPTION", format!("OPTION='{o}' is not supported yet")));
-        }
-    }
-    let t_all = Instant::now();
-    let model = a.req_concept("MODELE")?;
-    let chmat = a.concept("CHAM_MATER").ok_or_else(|| a.err("CHAM_MATER", "a material field is required"))?;
-    let inst = a.reals("INST").first().copied().unwrap_or(0.0);
-    let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
+/// The reduced linear system of a step: constraints eliminated, loads at `inst`.
+pub(super) struct System {
+    pub map: DofMap,
+    pub k: faer::sparse::SparseColMat<usize, f64>,
+    pub rhs: Vec<f64>,
+    pub t_numbering: std::time::Duration,
+    pub t_assembly: std::time::Duration,
+}
+
+pub(super) fn assemble(a: &Args, p: &Problem, model: &ConceptRef, inst: f64) -> Result<System> {
     let mesh = &p.mesh;
     let md = p.modelisation;
     let dim = md.dim();
     let t0 = Instant::now();
-
     // Kinematic conditions and forces.
     let mut cons = Constraints::new();
     let mut forces: Vec<(Vec<usize>, Vec<f64>)> = Vec::new();
@@ -323,8 +316,10 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     }
     let (k, rhs) = asm.finish();
     let t_assembly = t0.elapsed();
+    Ok(System { map, k, rhs, t_numbering, t_assembly })
+}
 
-    // Solve.
+pub(super) fn solver_options(a: &Args) -> SolverOptions {
     let mut opts = SolverOptions::default();
     if let Some(s) = a.fact("SOLVEUR") {
         if let Some(n) = s.int("NPREC") {
@@ -334,31 +329,45 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             opts.resi_rela = r;
         }
     }
-    let sol = solve::solve(k.as_ref(), &rhs, &opts).map_err(|e| match e {
+    opts
+}
+
+/// Solve, turning a singular matrix into a message naming the unknowns.
+pub(super) fn solve_reduced(
+    a: &Args,
+    p: &Problem,
+    map: &DofMap,
+    k: &faer::sparse::SparseColMat<usize, f64>,
+    rhs: &[f64],
+    opts: &SolverOptions,
+) -> Result<solve::Solution> {
+    solve::solve(k.as_ref(), rhs, opts).map_err(|e| match e {
         solve::SolveError::Singular { dofs, .. } => {
             let names: Vec<String> =
-                dofs.iter().take(6).map(|&d| p.numbering.label(map.free_to_full[d], Some(mesh))).collect();
+                dofs.iter().take(6).map(|&d| p.numbering.label(map.free_to_full[d], Some(&p.mesh))).collect();
             a.err(
                 "EXCIT",
                 format!("the system is singular (rigid-body motion not prevented?): unknowns {}", names.join(", ")),
             )
         }
         other => Error::runtime(other.to_string()).at(a.span),
-    })?;
-    let u = map.expand(&sol.x);
+    })
+}
 
-    // Fields.
-    let t0 = Instant::now();
-    let ncmp = dim;
-    let mut depl = vec![f64::NAN; mesh.coords.len() * ncmp];
+/// DEPL (and SIEF_ELGA) of a full displacement vector.
+pub(super) fn step_fields(p: &Problem, u: &[f64], with_sief: bool) -> Result<BTreeMap<String, Field>> {
+    let mesh = &p.mesh;
+    let md = p.modelisation;
+    let dim = md.dim();
+    let mut depl = vec![f64::NAN; mesh.coords.len() * dim];
     for (d, v) in u.iter().enumerate() {
         let (node, k) = p.numbering.node_comp(d);
-        depl[node * ncmp + k] = *v;
+        depl[node * dim + k] = *v;
     }
     let comps: Vec<String> = ["DX", "DY", "DZ"][..dim].iter().map(|s| s.to_string()).collect();
     let mut fields = BTreeMap::new();
     fields.insert("DEPL".to_string(), Field::Node { components: comps, values: depl });
-    if a.text("OPTION") != Some("SANS") {
+    if with_sief {
         let mut cells = vec![None; mesh.cells.len()];
         for &c in &p.bulk {
             let ue: Vec<f64> = p.numbering.cell_dofs(&mesh.cells[c]).unwrap().iter().map(|&d| u[d]).collect();
@@ -375,6 +384,35 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let names = md.sigma_names().iter().map(|s| s.to_string()).collect();
         fields.insert("SIEF_ELGA".to_string(), Field::Elga { components: names, cells });
     }
+    Ok(fields)
+}
+
+pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    for kw in ["CARA_ELEM", "LIST_INST", "SENSIBILITE"] {
+        if a.given(kw) {
+            return Err(a.err(kw, "not supported yet"));
+        }
+    }
+    if let Some(o) = a.text("OPTION") {
+        if o != "SIEF_ELGA" && o != "SANS" {
+            return Err(a.err("OPTION", format!("OPTION='{o}' is not supported yet")));
+        }
+    }
+    let t_all = Instant::now();
+    let model = a.req_concept("MODELE")?;
+    let chmat = a.concept("CHAM_MATER").ok_or_else(|| a.err("CHAM_MATER", "a material field is required"))?;
+    let inst = a.reals("INST").first().copied().unwrap_or(0.0);
+    let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
+    let md = p.modelisation;
+    let System { map, k, rhs, t_numbering, t_assembly } = assemble(a, &p, &model, inst)?;
+
+    // Solve.
+    let sol = solve_reduced(a, &p, &map, &k, &rhs, &solver_options(a))?;
+    let u = map.expand(&sol.x);
+
+    // Fields.
+    let t0 = Instant::now();
+    let fields = step_fields(&p, &u, a.text("OPTION") != Some("SANS"))?;
     let t_post = t0.elapsed();
     ctx.io.mess(&format!(
         "  linear statics ({}): {} unknowns, {} eliminated by kinematic conditions, {} solved ({:?}); residual {:.1e}\n  \
