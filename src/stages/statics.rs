@@ -159,7 +159,7 @@ pub(super) fn assemble(a: &Args, p: &Problem, model: &ConceptRef, inst: f64) -> 
     // Kinematic conditions and forces.
     let mut cons = Constraints::new();
     let mut forces: Vec<(Vec<usize>, Vec<f64>)> = Vec::new();
-    let model_ref = model_of(&model)?;
+    let model_ref = model_of(model)?;
     // The dofs of a boundary cell carrying a surface load; the cell must be a skin element of the model.
     let skin_dofs = |c: usize| -> Result<Vec<usize>> {
         let on_skin = model_ref.elements[c].as_ref().map(|e| e.role) == Some(Role::Skin);
@@ -173,7 +173,7 @@ pub(super) fn assemble(a: &Args, p: &Problem, model: &ConceptRef, inst: f64) -> 
         let ConceptData::Load(Load { items, model: lmodel, .. }) = &*data else {
             return Err(a.err("EXCIT", format!("{} is not a mechanical load", lc.label())));
         };
-        if !Rc::ptr_eq(lmodel, &model) {
+        if !Rc::ptr_eq(lmodel, model) {
             return Err(a.err("EXCIT", format!("load {} is defined on another model ({})", lc.label(), lmodel.label())));
         }
         for item in items {
