@@ -1010,8 +1010,13 @@ fn plan_result(out: &mut MedOut, occ: &Args) -> Result<()> {
 
 pub fn impr_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let format = a.text("FORMAT").unwrap_or("MED");
+    if format == "RESULTAT" {
+        return super::print::impr_resu_text(ctx, a);
+    }
     if format != "MED" {
-        return Err(a.err("FORMAT", format!("IMPR_RESU FORMAT='{format}' is not supported yet (only 'MED')")));
+        return Err(
+            a.err("FORMAT", format!("IMPR_RESU FORMAT='{format}' is not supported yet (only 'MED' and 'RESULTAT')"))
+        );
     }
     let mut out = MedOut::default();
     if let Some(v) = a.text("VERSION_MED").filter(|_| a.given("VERSION_MED")) {

@@ -10,6 +10,7 @@ pub mod mesh;
 pub mod model;
 pub mod nonlinear;
 pub mod orient;
+pub mod print;
 pub mod repere;
 pub mod results;
 pub mod statics;

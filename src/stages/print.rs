@@ -1,0 +1,140 @@
+//! IMPR_RESU FORMAT='RESULTAT': fields of results printed as text tables to a
+//! unit (the .resu file by default), one block per field and order number.
+
+use super::model::{model_of, select_cells, select_nodes};
+use super::results::result_of;
+use super::Ctx;
+use crate::catalog::args::Args;
+use crate::concepts::result::Field;
+use crate::concepts::ConceptData;
+use crate::diag::Result;
+use std::fmt::Write as _;
+
+fn num(v: f64) -> String {
+    if v.is_nan() {
+        format!("{:>13}", "-")
+    } else {
+        format!("{:>13}", crate::interp::format::sci(v, 5, true))
+    }
+}
+
+/// Print the result fields of one RESU occurrence.
+fn print_occurrence(occ: &Args, out: &mut String) -> Result<()> {
+    for kw in [
+        "CHAM_GD",
+        "MAILLAGE",
+        "NOM_CHAM_MED",
+        "SOUS_TITRE",
+        "NOM_VARI",
+        "VALE_MAX",
+        "VALE_MIN",
+        "BORNE_SUP",
+        "BORNE_INF",
+    ] {
+        if occ.given(kw) {
+            return Err(occ.err(kw, "not supported yet with FORMAT='RESULTAT'"));
+        }
+    }
+    let rc = occ.req_concept("RESULTAT")?;
+    let name = rc.label();
+    let r = result_of(&rc)?;
+    let model = model_of(&r.model)?;
+    let mesh = model.current_mesh();
+    let mesh_name = model.mesh_concept.label();
+    let restrict_nodes =
+        if occ.has("GROUP_NO") || occ.has("NOEUD") { Some(select_nodes(&mesh, occ, &mesh_name)?) } else { None };
+    let restrict_cells =
+        if occ.has("GROUP_MA") || occ.has("MAILLE") { Some(select_cells(&mesh, occ, &mesh_name)?) } else { None };
+    let orders = occ.ints("NUME_ORDRE");
+    let insts = occ.reals("INST");
+    let cmps = occ.texts("NOM_CMP");
+    for step in &r.steps {
+        if !orders.is_empty() && !orders.contains(&step.nume_ordre) {
+            continue;
+        }
+        if !insts.is_empty() && !insts.iter().any(|t| (t - step.inst).abs() <= 1e-6 * t.abs().max(1e-300)) {
+            continue;
+        }
+        let names: Vec<String> = match occ.texts("NOM_CHAM") {
+            v if v.is_empty() => step.fields.keys().cloned().collect(),
+            v => v,
+        };
+        for cham in names {
+            let field = step.fields.get(&cham).ok_or_else(|| {
+                occ.err("NOM_CHAM", format!("result {name} has no field {cham} at order {}", step.nume_ordre))
+            })?;
+            let all = field.components();
+            let ks: Vec<usize> = if cmps.is_empty() {
+                (0..all.len()).collect()
+            } else {
+                cmps.iter()
+                    .map(|c| {
+                        field
+                            .component(c)
+                            .ok_or_else(|| occ.err("NOM_CMP", format!("field {cham} has no component {c}")))
+                    })
+                    .collect::<Result<_>>()?
+            };
+            let n = all.len();
+            let _ = writeln!(
+                out,
+                "\n FIELD {cham} OF RESULT {name}  NUME_ORDRE {}  INST {}",
+                step.nume_ordre,
+                num(step.inst).trim()
+            );
+            let header: String = ks.iter().map(|&k| format!(" {:>13}", all[k])).collect();
+            match field {
+                Field::Node { values, .. } => {
+                    let _ = writeln!(out, " {:<10}{header}", "NOEUD");
+                    for node in 0..mesh.coords.len() {
+                        if restrict_nodes.as_ref().is_some_and(|r| !r.contains(&node)) {
+                            continue;
+                        }
+                        if ks.iter().all(|&k| values[node * n + k].is_nan()) {
+                            continue;
+                        }
+                        let row: String = ks.iter().map(|&k| format!(" {}", num(values[node * n + k]))).collect();
+                        let _ = writeln!(out, " {:<10}{row}", mesh.node_names[node]);
+                    }
+                }
+                Field::Elno { cells, .. } | Field::Elga { cells, .. } | Field::Elem { cells, .. } => {
+                    let per_node = matches!(field, Field::Elno { .. });
+                    let label = match field {
+                        Field::Elno { .. } => "NOEUD",
+                        Field::Elga { .. } => "POINT",
+                        _ => "",
+                    };
+                    let _ = writeln!(out, " {:<10} {label:<10}{header}", "MAILLE");
+                    for (c, v) in cells.iter().enumerate() {
+                        let Some(v) = v else { continue };
+                        if restrict_cells.as_ref().is_some_and(|r| !r.contains(&c)) {
+                            continue;
+                        }
+                        for (i, chunk) in v.chunks(n).enumerate() {
+                            let at =
+                                if per_node { mesh.node_names[mesh.cells[c][i]].clone() } else { format!("{}", i + 1) };
+                            if per_node && restrict_nodes.as_ref().is_some_and(|r| !r.contains(&mesh.cells[c][i])) {
+                                continue;
+                            }
+                            let row: String = ks.iter().map(|&k| format!(" {}", num(chunk[k]))).collect();
+                            let _ = writeln!(out, " {:<10} {at:<10}{row}", mesh.cell_names[c]);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// IMPR_RESU with FORMAT='RESULTAT'.
+pub fn impr_resu_text(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    let mut out = String::new();
+    for occ in a.facts("RESU") {
+        print_occurrence(occ, &mut out)?;
+    }
+    // The text result file by default (UNITE's catalogue default is MED's).
+    let unit = if a.given("UNITE") { a.int("UNITE").unwrap_or(8) } else { 8 };
+    ctx.io.write_unit(unit, &out).map_err(|e| e.at(a.span_of("UNITE")))?;
+    Ok(None)
+}
