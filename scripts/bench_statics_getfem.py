@@ -18,6 +18,7 @@ import time
 import numpy as np
 import getfem as gf
 
+gf.util_trace_level(0)
 t_start = time.perf_counter()
 case = sys.argv[1]
 n = [int(v) for v in sys.argv[2:]]
