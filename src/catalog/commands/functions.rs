@@ -1,3 +1,4 @@
+use super::common::*;
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptKind;
@@ -22,11 +23,6 @@ fn interp_keywords(suffix: bool) -> Vec<Entry> {
             simp("PROL_GAUCHE").txt().one_of(PROL),
         ]
     }
-}
-
-fn with(mut v: Vec<Entry>, more: Vec<Entry>) -> Vec<Entry> {
-    v.extend(more);
-    v
 }
 
 /// CALC_FONCTION returns a nappe when its inputs are nappes.

@@ -2,6 +2,7 @@
 
 use super::schema::Command;
 
+mod common;
 mod control;
 mod functions;
 mod loads;

@@ -2,30 +2,14 @@
 //! extraction to tables (POST_RELEVE_T), XFEM visualisation (POST_MAIL_XFEM,
 //! POST_CHAM_XFEM) and printing (IMPR_RESU).
 
+use super::common::*;
 use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptKind;
 use crate::diag::{Error, Result};
 use crate::kws;
 
-const FUNCS: &[ConceptKind] = &[ConceptKind::Fonction, ConceptKind::Nappe, ConceptKind::Formule];
-const RESULTS: &[ConceptKind] = &[ConceptKind::EvolElas, ConceptKind::EvolNoli];
 const CHAM_GD: &[ConceptKind] = &[ConceptKind::ChamNo, ConceptKind::ChamElem, ConceptKind::Carte];
-const OUI_NON: &[&str] = &["OUI", "NON"];
-
-/// `CRITERE` (default RELATIF) and its `PRECISION`, to find an instant.
-fn crit_prec() -> Vec<Entry> {
-    kws![
-        simp("CRITERE").txt().d("RELATIF").one_of(&["RELATIF", "ABSOLU"]),
-        bloc(eq("CRITERE", "RELATIF"), kws![simp("PRECISION").r().d(1.0e-6)]),
-        bloc(eq("CRITERE", "ABSOLU"), kws![simp("PRECISION").r().o()]),
-    ]
-}
-
-fn with(mut v: Vec<Entry>, more: Vec<Entry>) -> Vec<Entry> {
-    v.extend(more);
-    v
-}
 
 /// The type of the result named by keyword `kw`.
 fn concept_kind(a: &Args, kw: &str) -> Option<ConceptKind> {

@@ -1,22 +1,9 @@
 //! Solvers: MECA_STATIQUE, STAT_NON_LINE and the time-step list DEFI_LIST_INST.
 
+use super::common::*;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptKind;
 use crate::kws;
-
-const FUNCS: &[ConceptKind] = &[ConceptKind::Fonction, ConceptKind::Nappe, ConceptKind::Formule];
-const RESULTS: &[ConceptKind] = &[ConceptKind::EvolElas, ConceptKind::EvolNoli];
-const OUI_NON: &[&str] = &["OUI", "NON"];
-
-/// `CRITERE` (default RELATIF) and the `PRECISION` that goes with it, used to
-/// find an instant in a list.
-fn crit_prec() -> Vec<Entry> {
-    kws![
-        simp("CRITERE").txt().d("RELATIF").one_of(&["RELATIF", "ABSOLU"]),
-        bloc(eq("CRITERE", "RELATIF"), kws![simp("PRECISION").r().d(1.0e-6)]),
-        bloc(eq("CRITERE", "ABSOLU"), kws![simp("PRECISION").r().o()]),
-    ]
-}
 
 /// Keywords of a single-precision / low-rank factorisation preconditioner.
 fn precond_sp() -> Vec<Entry> {

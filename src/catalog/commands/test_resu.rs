@@ -1,11 +1,10 @@
 //! TEST_RESU: compare values extracted from results, fields and meshes with
 //! computed (non-regression) and reference values.
 
+use super::common::*;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptKind;
 use crate::kws;
-
-const RESULTS: &[ConceptKind] = &[ConceptKind::EvolElas, ConceptKind::EvolNoli];
 
 /// What varies between the factor keywords in the test-value keywords.
 struct RefOpts {

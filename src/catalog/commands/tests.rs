@@ -1,3 +1,4 @@
+use super::common::*;
 use super::tables::filter_keywords;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptKind;
@@ -16,11 +17,6 @@ pub fn check_keywords() -> Vec<Entry> {
         simp("VALE_ABS").txt().one_of(&["OUI", "NON"]).d("NON"),
         simp("LEGENDE").txt(),
     ]
-}
-
-fn with(mut v: Vec<Entry>, more: Vec<Entry>) -> Vec<Entry> {
-    v.extend(more);
-    v
 }
 
 pub fn commands() -> Vec<Command> {
