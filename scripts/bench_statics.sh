@@ -2,12 +2,14 @@
 # Benchmark of linear elastic statics (issue 4, acceptance point 4): aster-rs against GetFEM, same machine,
 # same run.
 #
-#   scripts/bench_statics.sh            # full sizes: 2D QUAD8 580x290 (~1.01 M dofs), 3D HEXA20 (~0.3 M dofs)
+#   scripts/bench_statics.sh            # 2D QUAD8 580x290 (~1.01 M dofs), 3D HEXA20 40x26x14 (~0.19 M dofs)
 #   BENCH_2D=40,20 BENCH_3D=6,4,2 scripts/bench_statics.sh   # quick smoke run
 #
 # Environment:
 #   BENCH_2D=NX,NY          QUAD8 cells of the 2 x 1 plane-strain block (default 580,290)
-#   BENCH_3D=NX,NY,NZ       HEXA20 cells of the 3 x 2 x 1 block (default 46,30,16); BENCH_3D=none skips 3D
+#   BENCH_3D=NX,NY,NZ       HEXA20 cells of the 3 x 2 x 1 block (default 40,26,14: ~193 k dofs,
+#                           which keeps the script near 6 min here; 46,30,16 gives ~289 k dofs but
+#                           ~12 min and ~14 GiB peak); BENCH_3D=none skips 3D
 #   BENCH_GETFEM_THREADS=N  OpenBLAS threads for GetFEM/MUMPS (default 1: aster-rs factorizes on one thread)
 #   BENCH_DIR=PATH          work folder (default: a fresh temp folder, removed at the end)
 #
@@ -21,7 +23,7 @@ set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 cd "$ROOT"
 N2D=${BENCH_2D:-580,290}
-N3D=${BENCH_3D:-46,30,16}
+N3D=${BENCH_3D:-40,26,14}
 GF_THREADS=${BENCH_GETFEM_THREADS:-1}
 PY=/usr/bin/python3
 
@@ -127,7 +129,8 @@ run_case() {
     local tgen
     tgen=$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f", b - a }')
     "write_comm_$gcase" "$dir/case.comm"
-    local rc=0
+    local rc=0 load
+    load=$(cut -d' ' -f1 /proc/loadavg)
     /usr/bin/time -v -o "$dir/aster.time" "$ASTER" run "$dir/case.comm" --unit 20="$dir/mesh.med" --out "$dir" -q \
         >"$dir/aster.out" 2>&1 || rc=$?
     local mess="$dir/case.mess"
@@ -154,13 +157,14 @@ run_case() {
             printf "ndofs=%s mesh=%s numbering=%s assembly=%s factorization=%s solve=%s fields=%s calc_champ=%s meca=%s checks=%s diag=%s",
                 nd, mesh, num, asm, fac, sol, fld, calc, ms, checks, diag
         }' "$mess" 2>/dev/null || true)
-    echo "ASTER case=$name cells=$n gen=$tgen rc=$rc $phases $(time_fields "$dir/aster.time")" | tee -a "$RESULTS" >&2
+    echo "ASTER case=$name cells=$n gen=$tgen load=$load rc=$rc $phases $(time_fields "$dir/aster.time")" | tee -a "$RESULTS" >&2
     # GetFEM, same problem, mesh built in GetFEM.
     local grc=0
+    load=$(cut -d' ' -f1 /proc/loadavg)
     OPENBLAS_NUM_THREADS=$GF_THREADS OMP_NUM_THREADS=$GF_THREADS \
         /usr/bin/time -v -o "$dir/getfem.time" "$PY" "$ROOT/scripts/bench_statics_getfem.py" "$gcase" ${n//,/ } \
         >"$dir/getfem.out" 2>"$dir/getfem.err" || grc=$?
-    echo "$(grep '^GETFEM' "$dir/getfem.out" || echo "GETFEM case=$gcase failed") name=$name rc=$grc $(time_fields "$dir/getfem.time")" \
+    echo "$(grep '^GETFEM' "$dir/getfem.out" || echo "GETFEM case=$gcase failed") name=$name load=$load rc=$grc $(time_fields "$dir/getfem.time")" \
         | tee -a "$RESULTS" >&2
 }
 
@@ -212,5 +216,10 @@ for r in aster:
         f(g, "solve"), f(g, "total"), f(g, "wall"), f(g, "rss"),
         "OK (rel. err. %s)" % g.get("relerr") if ok else "FAILED rc=%s" % g.get("rc"),
         f(r, "wall") / f(g, "wall"), f(r, "wall") / f(g, "total")))
+print()
+print("mesh generation (aster mesh box, not in the table): " + ", ".join(
+    "%s %s s" % (r["case"], r.get("gen")) for r in aster))
+print("1-min load average at the start of each run (2 cores; other jobs share the machine): " + ", ".join(
+    "%s aster-rs %s / GetFEM %s" % (r["case"], r.get("load"), gf.get(r["case"], {}).get("load")) for r in aster))
 sys.exit(1 if failed else 0)
 EOF

@@ -13,3 +13,4 @@ pub mod runner;
 pub mod solve;
 pub mod stages;
 pub mod syntax;
+pub mod xfem;

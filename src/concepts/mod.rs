@@ -98,6 +98,8 @@ pub enum ConceptData {
     MaterialField(model::MaterialField),
     Load(model::Load),
     Result(result::ResultData),
+    Crack(crate::xfem::Crack),
+    Field(result::FieldData),
 }
 
 /// A command result: its type, the name it was given, and its data.

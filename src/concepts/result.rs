@@ -42,6 +42,18 @@ impl Field {
     }
 }
 
+/// A field of its own (`cham_no`, `cham_elem`: CREA_CHAMP): its values on the
+/// cells or nodes of a mesh (the mesh concept, whose current content gives
+/// names and groups) and, for a field of functions (`*_NEUT_F`), the function of each
+/// cell and component (None: the zero function of PROL_ZERO), `field` then
+/// holding NaN.
+#[derive(Debug, Clone)]
+pub struct FieldData {
+    pub mesh_concept: ConceptRef,
+    pub field: Field,
+    pub functions: Option<Vec<Option<Vec<Option<ConceptRef>>>>>,
+}
+
 /// One stored step of a result.
 #[derive(Debug, Clone)]
 pub struct Step {

@@ -1,6 +1,9 @@
-//! Isotropic linear elasticity on isoparametric elements, in Code_Aster's
+//! Linear elasticity on isoparametric elements, in Code_Aster's
 //! conventions.
 //!
+//! * Materials ([`IsoElastic`]): isotropic (E, ν), or a general 3D Hooke
+//!   matrix in the global frame (transversely isotropic `ELAS_ISTR`), the
+//!   latter in `3D` and `D_PLAN` only.
 //! * Modelisations ([`Modelisation`]): `3D`, `D_PLAN` (plane strain),
 //!   `C_PLAN` (plane stress) and `AXIS` (axisymmetric, x = r, y = z, per
 //!   radian: the integration weight is multiplied by r, no 2π).
@@ -107,16 +110,142 @@ impl Modelisation {
     }
 }
 
-/// Isotropic linear elastic material (`DEFI_MATERIAU/ELAS`).
+/// Linear elastic material: isotropic (`DEFI_MATERIAU/ELAS`: E, ν), or
+/// anisotropic with a general 3D Hooke matrix in the global frame
+/// (`ELAS_ISTR`, see [`IsoElastic::transverse_isotropic`]).
+///
+/// The anisotropic form is handled in `3D` and `D_PLAN` (where the Hooke
+/// matrix is the `XX YY ZZ XY` block of the 3D one, as Code_Aster's
+/// `dmatdp`); the element routines refuse it in `C_PLAN` and `AXIS`
+/// ([`ElementError::AnisotropicUnsupported`]). For an anisotropic material
+/// `e` and `nu` are the Young modulus and Poisson ratio along X
+/// (`1/S_xx`, `-S_yx/S_xx` of the compliance).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct IsoElastic {
     pub e: f64,
     pub nu: f64,
+    /// The 3D Hooke matrix of an anisotropic material (engineering shear,
+    /// components `XX YY ZZ XY XZ YZ`); None when isotropic.
+    general: Option<[[f64; 6]; 6]>,
+}
+
+/// Invert a symmetric positive definite 6×6 matrix (Cholesky), or None when
+/// it is not positive definite.
+#[allow(clippy::needless_range_loop)]
+fn spd_inverse6(a: &[[f64; 6]; 6]) -> Option<[[f64; 6]; 6]> {
+    let scale = (0..6).map(|i| a[i][i].abs()).fold(0.0f64, f64::max);
+    if !(scale > 0.0 && scale.is_finite()) {
+        return None;
+    }
+    // A = L Lᵀ.
+    let mut l = [[0.0; 6]; 6];
+    for i in 0..6 {
+        for j in 0..=i {
+            let s = a[i][j] - (0..j).map(|k| l[i][k] * l[j][k]).sum::<f64>();
+            if i == j {
+                if s <= 1e-13 * scale || !s.is_finite() {
+                    return None;
+                }
+                l[i][i] = s.sqrt();
+            } else {
+                l[i][j] = s / l[j][j];
+            }
+        }
+    }
+    // Columns of A⁻¹: solve L y = e_c, then Lᵀ x = y.
+    let mut inv = [[0.0; 6]; 6];
+    for c in 0..6 {
+        let mut y = [0.0; 6];
+        for i in 0..6 {
+            let rhs = if i == c { 1.0 } else { 0.0 };
+            y[i] = (rhs - (0..i).map(|k| l[i][k] * y[k]).sum::<f64>()) / l[i][i];
+        }
+        let mut x = [0.0; 6];
+        for i in (0..6).rev() {
+            x[i] = (y[i] - (i + 1..6).map(|k| l[k][i] * x[k]).sum::<f64>()) / l[i][i];
+        }
+        for i in 0..6 {
+            inv[i][c] = x[i];
+        }
+    }
+    Some(inv)
 }
 
 impl IsoElastic {
     pub fn new(e: f64, nu: f64) -> IsoElastic {
-        IsoElastic { e, nu }
+        IsoElastic { e, nu, general: None }
+    }
+
+    /// An anisotropic material from its 3D Hooke matrix in the global frame
+    /// (engineering shear, components `XX YY ZZ XY XZ YZ`). The matrix must
+    /// be symmetric positive definite.
+    pub fn from_hooke_3d(d: [[f64; 6]; 6]) -> Result<IsoElastic, String> {
+        for i in 0..6 {
+            for j in 0..i {
+                let tol = 1e-12 * (d[i][i].abs() + d[j][j].abs());
+                if (d[i][j] - d[j][i]).abs() > tol {
+                    return Err(format!(
+                        "the Hooke matrix is not symmetric (entries {}{} and {}{})",
+                        i + 1,
+                        j + 1,
+                        j + 1,
+                        i + 1
+                    ));
+                }
+            }
+        }
+        let s = spd_inverse6(&d).ok_or_else(|| "the Hooke matrix is not positive definite".to_string())?;
+        Ok(IsoElastic { e: 1.0 / s[0][0], nu: -s[1][0] / s[0][0], general: Some(d) })
+    }
+
+    /// Transversely isotropic material (`ELAS_ISTR`), in Code_Aster's
+    /// convention (`dmat3d`): axes L, T, N; the plane L-T is the plane of
+    /// isotropy, N its normal. With no orientation given (no `MASSIF` of
+    /// AFFE_CARA_ELEM) L, T, N are the global X, Y, Z. The compliance is
+    /// `ε_L = σ_L/E_L - ν_LT σ_T/E_L - ν_LN σ_N/E_L`,
+    /// `ε_N = -ν_LN (σ_L + σ_T)/E_L + σ_N/E_N` (so `ν_NL = ν_LN E_N/E_L`),
+    /// `γ_LT = 2 (1 + ν_LT)/E_L τ_LT`, `γ_LN = τ_LN/G_LN`, `γ_TN = τ_TN/G_LN`.
+    pub fn transverse_isotropic(e_l: f64, e_n: f64, nu_lt: f64, nu_ln: f64, g_ln: f64) -> Result<IsoElastic, String> {
+        if !(e_l > 0.0 && e_n > 0.0 && g_ln > 0.0) {
+            return Err(format!("E_L = {e_l}, E_N = {e_n} and G_LN = {g_ln} must be positive"));
+        }
+        let nu_nl = nu_ln * e_n / e_l;
+        let delta = 1.0 - nu_lt - 2.0 * nu_ln * nu_nl;
+        if !(nu_lt > -1.0 && delta > 0.0) {
+            return Err(format!(
+                "NU_LT = {nu_lt}, NU_LN = {nu_ln} give no positive definite Hooke matrix \
+                 (need NU_LT > -1 and 1 - NU_LT - 2 NU_LN² E_N/E_L > 0)"
+            ));
+        }
+        let c1 = e_l / (1.0 + nu_lt);
+        let mut d = [[0.0; 6]; 6];
+        d[0][0] = c1 * (1.0 - nu_ln * nu_nl) / delta;
+        d[1][1] = d[0][0];
+        d[0][1] = c1 * ((1.0 - nu_ln * nu_nl) / delta - 1.0);
+        d[1][0] = d[0][1];
+        d[0][2] = e_n * nu_ln / delta;
+        d[1][2] = d[0][2];
+        d[2][0] = d[0][2];
+        d[2][1] = d[0][2];
+        d[2][2] = e_n * (1.0 - nu_lt) / delta;
+        d[3][3] = 0.5 * c1;
+        d[4][4] = g_ln;
+        d[5][5] = g_ln;
+        IsoElastic::from_hooke_3d(d)
+    }
+
+    /// True for an isotropic material (E, ν only).
+    pub fn is_isotropic(&self) -> bool {
+        self.general.is_none()
+    }
+
+    /// The error of the element routines when the material cannot be used
+    /// with `m` (an anisotropic material in `C_PLAN` or `AXIS`).
+    pub fn check(&self, m: Modelisation) -> Result<(), ElementError> {
+        if self.general.is_some() && matches!(m, Modelisation::CPlan | Modelisation::Axis) {
+            return Err(ElementError::AnisotropicUnsupported { modelisation: m });
+        }
+        Ok(())
     }
 
     /// Lamé coefficients (λ, μ).
@@ -140,8 +269,13 @@ impl IsoElastic {
     /// Hooke matrix of `m` (`nsig × nsig` block of the returned array), acting
     /// on strains with engineering shear (γ = 2 ε): σ = D [εxx, εyy, εzz, γxy
     /// (, γxz, γyz)]. For `C_PLAN` the εzz row and column are zero (εzz is
-    /// eliminated by σzz = 0).
+    /// eliminated by σzz = 0). For an anisotropic material the 2D matrices
+    /// are the `XX YY ZZ XY` block of the 3D one (condensed by σzz = 0 in
+    /// `C_PLAN`).
     pub fn hooke(&self, m: Modelisation) -> [[f64; 6]; 6] {
+        if let Some(g) = &self.general {
+            return general_hooke(g, m);
+        }
         let (l, mu) = self.lame();
         let mut d = [[0.0; 6]; 6];
         if m == Modelisation::CPlan {
@@ -165,6 +299,34 @@ impl IsoElastic {
     }
 }
 
+/// The Hooke matrix of `m` from a general 3D one (see [`IsoElastic::hooke`]).
+#[allow(clippy::needless_range_loop)]
+fn general_hooke(g: &[[f64; 6]; 6], m: Modelisation) -> [[f64; 6]; 6] {
+    if m == Modelisation::ThreeD {
+        return *g;
+    }
+    let mut d = [[0.0; 6]; 6];
+    for i in 0..4 {
+        for j in 0..4 {
+            d[i][j] = g[i][j];
+        }
+    }
+    if m == Modelisation::CPlan {
+        let d22 = d[2][2];
+        let (r2, c2) = (d[2], [d[0][2], d[1][2], d[2][2], d[3][2]]);
+        for i in [0, 1, 3] {
+            for j in [0, 1, 3] {
+                d[i][j] -= c2[i] * r2[j] / d22;
+            }
+        }
+        for k in 0..4 {
+            d[2][k] = 0.0;
+            d[k][2] = 0.0;
+        }
+    }
+    d
+}
+
 /// Errors of the element computations.
 #[derive(Debug, Clone, PartialEq)]
 pub enum ElementError {
@@ -175,6 +337,8 @@ pub enum ElementError {
     WrongCellType { cell_type: CellType, modelisation: Modelisation },
     /// An AXIS Gauss point at r ≤ 0.
     NonPositiveRadius { gauss_point: usize, r: f64 },
+    /// An anisotropic material under a modelisation that does not take one.
+    AnisotropicUnsupported { modelisation: Modelisation },
 }
 
 impl fmt::Display for ElementError {
@@ -192,6 +356,11 @@ impl fmt::Display for ElementError {
             ElementError::NonPositiveRadius { gauss_point, r } => {
                 write!(f, "AXIS: Gauss point {} has radius {r:e} ≤ 0 (x must be the radius, ≥ 0)", gauss_point + 1)
             }
+            ElementError::AnisotropicUnsupported { modelisation } => write!(
+                f,
+                "anisotropic elasticity (ELAS_ISTR) is not supported yet under modelisation {} (3D and D_PLAN are)",
+                modelisation.name()
+            ),
         }
     }
 }
@@ -330,6 +499,10 @@ pub fn stiffness(
     t: CellType,
     coords: &[[f64; 3]],
 ) -> Result<Vec<f64>, ElementError> {
+    mat.check(m)?;
+    if !mat.is_isotropic() {
+        return stiffness_general(m, &mat.hooke(m), t, coords);
+    }
     let rule = rigi_rule(t);
     let gg = gauss_geometry(m, t, coords, &rule)?;
     let dim = m.dim();
@@ -405,6 +578,48 @@ fn b_node(m: Modelisation, g: &GaussGeom, a: usize) -> [[f64; 3]; 6] {
     b
 }
 
+/// `K = ∫ Bᵀ D B` for any Hooke matrix `d` of `m` (anisotropic materials):
+/// `D B` is formed once per node and Gauss point.
+fn stiffness_general(
+    m: Modelisation,
+    d: &[[f64; 6]; 6],
+    t: CellType,
+    coords: &[[f64; 3]],
+) -> Result<Vec<f64>, ElementError> {
+    let rule = rigi_rule(t);
+    let gg = gauss_geometry(m, t, coords, &rule)?;
+    let (dim, ns, nno) = (m.dim(), m.nsig(), t.nnodes());
+    let nd = nno * dim;
+    let mut k = vec![0.0; nd * nd];
+    for g in &gg {
+        let bs: Vec<_> = (0..nno).map(|a| b_node(m, g, a)).collect();
+        // db[b][p][j] = Σ_q D[p][q] B_b[q][j]
+        let db: Vec<[[f64; 3]; 6]> = bs
+            .iter()
+            .map(|bb| {
+                let mut out = [[0.0; 3]; 6];
+                for (p, row) in out.iter_mut().enumerate().take(ns) {
+                    for (j, v) in row.iter_mut().enumerate().take(dim) {
+                        *v = (0..ns).map(|q| d[p][q] * bb[q][j]).sum();
+                    }
+                }
+                out
+            })
+            .collect();
+        for a in 0..nno {
+            for b in 0..nno {
+                for i in 0..dim {
+                    for j in 0..dim {
+                        let s: f64 = (0..ns).map(|p| bs[a][p][i] * db[b][p][j]).sum();
+                        k[(a * dim + i) * nd + b * dim + j] += g.w * s;
+                    }
+                }
+            }
+        }
+    }
+    Ok(k)
+}
+
 /// Reference implementation of [`stiffness`] by explicit `Bᵀ D B` products
 /// (slower; used to cross-check the fast formula).
 pub fn stiffness_btdb(
@@ -413,6 +628,7 @@ pub fn stiffness_btdb(
     t: CellType,
     coords: &[[f64; 3]],
 ) -> Result<Vec<f64>, ElementError> {
+    mat.check(m)?;
     let rule = rigi_rule(t);
     let gg = gauss_geometry(m, t, coords, &rule)?;
     let (dim, ns, nno) = (m.dim(), m.nsig(), t.nnodes());
@@ -504,6 +720,7 @@ pub fn gauss_fields(
     coords: &[[f64; 3]],
     u: &[f64],
 ) -> Result<GaussFields, ElementError> {
+    mat.check(m)?;
     let rule = rigi_rule(t);
     let gg = gauss_geometry(m, t, coords, &rule)?;
     let nno = t.nnodes();
@@ -792,6 +1009,119 @@ mod tests {
         let d3 = mat.hooke(Modelisation::ThreeD);
         assert_eq!(d3[5][5], mu);
         assert_eq!(d3[0][0], l + 2.0 * mu);
+    }
+
+    const ISTR: (f64, f64, f64, f64, f64) = (5.0e11, 2.0e11, 0.1, 0.3, 7.7e10);
+
+    fn istr() -> IsoElastic {
+        let (el, en, nlt, nln, g) = ISTR;
+        IsoElastic::transverse_isotropic(el, en, nlt, nln, g).unwrap()
+    }
+
+    fn close(a: f64, b: f64, rel: f64) -> bool {
+        (a - b).abs() <= rel * a.abs().max(b.abs())
+    }
+
+    #[test]
+    fn transverse_isotropic_reduces_to_isotropic() {
+        let (e, nu) = (210e9, 0.28);
+        let iso = IsoElastic::new(e, nu);
+        let ti = IsoElastic::transverse_isotropic(e, e, nu, nu, e / (2.0 * (1.0 + nu))).unwrap();
+        assert!(!ti.is_isotropic());
+        assert!(close(ti.e, e, 1e-13) && close(ti.nu, nu, 1e-12));
+        for m in [Modelisation::ThreeD, Modelisation::DPlan, Modelisation::CPlan, Modelisation::Axis] {
+            let (a, b) = (iso.hooke(m), ti.hooke(m));
+            for i in 0..6 {
+                for j in 0..6 {
+                    assert!((a[i][j] - b[i][j]).abs() <= 1e-12 * a[0][0], "{m:?} {i}{j}: {} {}", a[i][j], b[i][j]);
+                }
+            }
+        }
+    }
+
+    #[test]
+    #[allow(clippy::needless_range_loop)]
+    fn transverse_isotropic_compliance() {
+        let (el, en, nlt, nln, g) = ISTR;
+        let s = spd_inverse6(&istr().hooke(Modelisation::ThreeD)).unwrap();
+        let mut want = [[0.0; 6]; 6];
+        want[0][0] = 1.0 / el;
+        want[1][1] = 1.0 / el;
+        want[2][2] = 1.0 / en;
+        want[0][1] = -nlt / el;
+        want[1][0] = -nlt / el;
+        for k in 0..2 {
+            want[k][2] = -nln / el;
+            want[2][k] = -nln / el;
+        }
+        want[3][3] = 2.0 * (1.0 + nlt) / el;
+        want[4][4] = 1.0 / g;
+        want[5][5] = 1.0 / g;
+        for i in 0..6 {
+            for j in 0..6 {
+                assert!(
+                    (s[i][j] - want[i][j]).abs() <= 1e-12 * s[i][i].abs(),
+                    "S{i}{j}: {} vs {}",
+                    s[i][j],
+                    want[i][j]
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn uniaxial_stress_along_n() {
+        let (el, en, _, nln, _) = ISTR;
+        let mat = istr();
+        let sig = 3.0e7;
+        // Strain of σ = σ e_N, checked through the Hooke matrix: D ε = σ.
+        let s = spd_inverse6(&mat.hooke(Modelisation::ThreeD)).unwrap();
+        let eps: Vec<f64> = (0..6).map(|i| s[i][2] * sig).collect();
+        assert!(close(eps[2], sig / en, 1e-12));
+        assert!(close(eps[0], -nln * sig / el, 1e-12) && close(eps[1], eps[0], 1e-12));
+        let tens = [eps[0], eps[1], eps[2], 0.0, 0.0, 0.0];
+        let back = stress_from_strain(Modelisation::ThreeD, &mat, &tens);
+        assert!(close(back[2], sig, 1e-12) && back[0].abs() < 1e-6 * sig && back[1].abs() < 1e-6 * sig);
+        // On a hexahedron: the uniform strain field of that stress.
+        let c = ref_coords(CellType::Hexa8, 1.0);
+        let u: Vec<f64> = c.iter().flat_map(|x| [eps[0] * x[0], eps[1] * x[1], eps[2] * x[2]]).collect();
+        let g = gauss_fields(Modelisation::ThreeD, &mat, CellType::Hexa8, &c, &u).unwrap();
+        for s in &g.sig {
+            assert!(close(s[2], sig, 1e-10) && s[0].abs() < 1e-8 * sig && s[3].abs() < 1e-8 * sig);
+        }
+    }
+
+    #[test]
+    fn anisotropic_stiffness_matches_btdb_and_refuses_cplan_axis() {
+        let mat = istr();
+        for (m, t) in cases() {
+            let c = ref_coords(t, 1.3);
+            if matches!(m, Modelisation::CPlan | Modelisation::Axis) {
+                let err = stiffness(m, &mat, t, &c).unwrap_err();
+                assert_eq!(err, ElementError::AnisotropicUnsupported { modelisation: m });
+                assert!(gauss_fields(m, &mat, t, &c, &vec![0.0; t.nnodes() * 2]).is_err());
+                continue;
+            }
+            let k = stiffness(m, &mat, t, &c).unwrap();
+            let k2 = stiffness_btdb(m, &mat, t, &c).unwrap();
+            let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            for (a, b) in k.iter().zip(&k2) {
+                assert!((a - b).abs() < 1e-11 * kmax, "{m:?} {t:?}");
+            }
+        }
+        // An isotropic material written as a general matrix gives the fast formula's stiffness.
+        let iso = IsoElastic::new(1000.0, 0.27);
+        let gen = IsoElastic::from_hooke_3d(iso.hooke(Modelisation::ThreeD)).unwrap();
+        for (m, t) in cases().into_iter().filter(|(m, _)| matches!(m, Modelisation::ThreeD | Modelisation::DPlan)) {
+            let c = ref_coords(t, 1.3);
+            let (k, k2) = (stiffness(m, &iso, t, &c).unwrap(), stiffness(m, &gen, t, &c).unwrap());
+            let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            for (a, b) in k.iter().zip(&k2) {
+                assert!((a - b).abs() < 1e-11 * kmax, "{m:?} {t:?}");
+            }
+        }
+        assert!(IsoElastic::transverse_isotropic(1.0, 1.0, 0.6, 0.5, 1.0).is_err());
+        assert!(IsoElastic::transverse_isotropic(1.0, -1.0, 0.1, 0.1, 1.0).is_err());
     }
 
     fn cases() -> Vec<(Modelisation, CellType)> {

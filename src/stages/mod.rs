@@ -5,6 +5,7 @@
 //! verdicts. Stages never see the AST nor the file system layout.
 
 pub mod control;
+pub mod fields;
 pub mod functions;
 pub mod mesh;
 pub mod model;
@@ -18,6 +19,7 @@ pub mod table_io;
 pub mod tables;
 pub mod tests;
 pub mod verdict;
+pub mod xfem;
 
 use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
@@ -103,10 +105,12 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "TEST_RESU" => results::test_resu,
         "MECA_STATIQUE" => statics::meca_statique,
         "CALC_CHAMP" => statics::calc_champ,
+        "CREA_CHAMP" => fields::crea_champ,
         "STAT_NON_LINE" => nonlinear::stat_non_line,
         "POST_RELEVE_T" => results::post_releve_t,
         "MODI_MAILLAGE" => orient::modi_maillage,
         "MODI_REPERE" => repere::modi_repere,
+        "DEFI_FISS_XFEM" => xfem::defi_fiss_xfem,
         _ => return None,
     })
 }

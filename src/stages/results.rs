@@ -138,9 +138,14 @@ fn locate(field: &Field, k: usize, mesh: &Mesh, occ: &Args, mesh_name: &str) -> 
 }
 
 pub fn test_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    for kw in ["CHAM_NO", "CHAM_ELEM", "CARTE", "MAILLAGE", "OBJET", "GENE"] {
+    for kw in ["CARTE", "MAILLAGE", "OBJET", "GENE"] {
         if a.given(kw) {
             return Err(a.err(kw, "not supported yet"));
+        }
+    }
+    for kw in ["CHAM_NO", "CHAM_ELEM"] {
+        for occ in a.facts(kw) {
+            test_field(ctx, occ, kw)?;
         }
     }
     for occ in a.facts("RESU") {
@@ -193,6 +198,56 @@ pub fn test_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         check(ctx, occ, Scalar::R(value), cmp, &title)?;
     }
     Ok(None)
+}
+
+/// One occurrence of CHAM_NO or CHAM_ELEM: a value of a standalone field.
+fn test_field(ctx: &mut Ctx, occ: &Args, kw: &str) -> Result<()> {
+    let fc = occ.req_concept("CHAM_GD")?;
+    let name = fc.label();
+    let f = super::fields::field_of(&fc)?;
+    let mesh = super::fields::mesh_of_field(&f)?;
+    let mesh_name = f.mesh_concept.label();
+    if f.functions.is_some() {
+        return Err(occ.err("CHAM_GD", format!("{name} is a field of functions; only fields of reals can be tested")));
+    }
+    let field = &f.field;
+    let (value, legend, where_) = match (occ.text("TYPE_TEST"), occ.text("NOM_CMP")) {
+        (Some(tt), cmp) => {
+            let ks: Vec<usize> = match cmp {
+                Some(c) => vec![field.component(c).ok_or_else(|| {
+                    occ.err("NOM_CMP", format!("field {name} has no component {c} ({})", field.components().join(", ")))
+                })?],
+                None => (0..field.components().len()).collect(),
+            };
+            let vals: Vec<f64> = ks.iter().flat_map(|&k| field.all_values(k)).collect();
+            let v = match tt {
+                "MAX" => vals.iter().cloned().fold(f64::MIN, f64::max),
+                "MIN" => vals.iter().cloned().fold(f64::MAX, f64::min),
+                "SOMM" => vals.iter().sum(),
+                _ => vals.iter().map(|x| x.abs()).sum(),
+            };
+            (v, cmp.unwrap_or(tt).to_string(), format!("TYPE_TEST {tt}"))
+        }
+        (None, Some(cmp)) => {
+            let k = field.component(cmp).ok_or_else(|| {
+                occ.err("NOM_CMP", format!("field {name} has no component {cmp} ({})", field.components().join(", ")))
+            })?;
+            let v = locate(field, k, &mesh, occ, &mesh_name)?;
+            let mut w = Vec::new();
+            for kw in ["NOEUD", "GROUP_NO", "MAILLE", "GROUP_MA"] {
+                if let Some(t) = occ.text(kw) {
+                    w.push(format!("{kw} {t}"));
+                }
+            }
+            if let Some(p) = occ.int("POINT") {
+                w.push(format!("POINT {p}"));
+            }
+            (v, cmp.to_string(), format!("NOM_CMP {cmp} {}", w.join(" ")))
+        }
+        (None, None) => return Err(occ.err("NOM_CMP", "NOM_CMP or TYPE_TEST is required")),
+    };
+    let title = format!("{kw} {name} {where_}");
+    check(ctx, occ, Scalar::R(value), &legend, title.trim_end())
 }
 
 // ------------------------------------------------------------------ POST_RELEVE_T

@@ -53,20 +53,84 @@ pub fn eval_at(c: &ConceptRef, x: &[f64; 3], inst: f64) -> Result<f64> {
     }
 }
 
-fn elastic_of(m: &Material, cell: &str) -> Result<IsoElastic> {
-    match (m.real("ELAS", "E"), m.real("ELAS", "NU")) {
-        (Some(e), Some(nu)) => Ok(IsoElastic::new(e, nu)),
-        _ if m.behaviours.contains_key("ELAS_FO") => {
-            Err(Error::runtime(format!("cell {cell}: ELAS_FO (temperature-dependent elasticity) is not supported yet")))
+/// A material parameter as a real: a real, or a function that does not
+/// depend on a variable unknown here (DEFI_CONSTANTE, NOM_PARA 'TOUTPARA';
+/// a formula of no parameter). None when the parameter is not given.
+fn mat_param(m: &Material, behaviour: &str, param: &str, cell: &str) -> Result<Option<f64>> {
+    let Some(v) = m.behaviours.get(behaviour).and_then(|b| b.get(param)) else {
+        return Ok(None);
+    };
+    let depends = |on: &str, what: &str| {
+        Error::unsupported(format!(
+            "cell {cell}: {behaviour}/{param} is {what} of {on}; material parameters depending on {on} \
+             are not supported yet (only constants: reals or DEFI_CONSTANTE)"
+        ))
+    };
+    use crate::concepts::model::MatValue;
+    match v {
+        MatValue::Real(r) => Ok(Some(*r)),
+        MatValue::Text(t) => {
+            Err(Error::runtime(format!("cell {cell}: {behaviour}/{param} is the text '{t}', not a number")))
         }
-        _ => {
-            let others: Vec<&str> = m.behaviours.keys().map(String::as_str).collect();
-            Err(Error::runtime(format!(
-                "cell {cell}: the material has no ELAS (E, NU); it defines {}, which this command does not support yet",
-                if others.is_empty() { "nothing".to_string() } else { others.join(", ") }
-            )))
+        MatValue::Func(c) => {
+            let label = c.label();
+            let what = format!("the function {label}");
+            let value = match &*c.data() {
+                ConceptData::Function(f) if f.nom_para == "TOUTPARA" => f.eval(0.0),
+                ConceptData::Function(f) => return Err(depends(&f.nom_para, &what)),
+                ConceptData::Nappe(n) => return Err(depends(&n.nom_para, &what)),
+                ConceptData::Formula(f) if f.nom_para.is_empty() => f.eval(&[]),
+                ConceptData::Formula(f) => return Err(depends(&f.nom_para.join(", "), &what)),
+                _ => {
+                    return Err(Error::runtime(format!(
+                        "cell {cell}: {behaviour}/{param}: {label} ({}) is not a function",
+                        c.kind()
+                    )))
+                }
+            };
+            value
+                .map(Some)
+                .map_err(|e| Error::runtime(format!("cell {cell}: {behaviour}/{param} ({label}): {}", e.msg)))
         }
     }
+}
+
+/// The elastic behaviours we compute with, and the parameters each requires.
+const ELASTIC_BEHAVIOURS: &[(&str, &[&str])] = &[
+    ("ELAS", &["E", "NU"]),
+    ("ELAS_FO", &["E", "NU"]),
+    ("ELAS_ISTR", &["E_L", "E_N", "NU_LT", "NU_LN", "G_LN"]),
+    ("ELAS_ISTR_FO", &["E_L", "E_N", "NU_LT", "NU_LN", "G_LN"]),
+];
+
+/// The elastic law of a material and its density RHO (0 when not given).
+fn elastic_of(m: &Material, cell: &str) -> Result<(IsoElastic, f64)> {
+    let Some((beh, params)) = ELASTIC_BEHAVIOURS.iter().find(|(b, _)| m.behaviours.contains_key(*b)) else {
+        let others: Vec<&str> = m.behaviours.keys().map(String::as_str).collect();
+        return Err(Error::unsupported(format!(
+            "cell {cell}: the material has no ELAS (E, NU), ELAS_FO or ELAS_ISTR(_FO); it defines {}, \
+             which this command does not support yet",
+            if others.is_empty() { "nothing".to_string() } else { others.join(", ") }
+        )));
+    };
+    let mut v = Vec::with_capacity(params.len());
+    for p in params.iter() {
+        let x = mat_param(m, beh, p, cell)?.ok_or_else(|| {
+            Error::unsupported(format!(
+                "cell {cell}: {beh} without {p} is not supported yet ({} are needed)",
+                params.join(", ")
+            ))
+        })?;
+        v.push(x);
+    }
+    let law = match v[..] {
+        [e, nu] => IsoElastic::new(e, nu),
+        [e_l, e_n, nu_lt, nu_ln, g_ln] => IsoElastic::transverse_isotropic(e_l, e_n, nu_lt, nu_ln, g_ln)
+            .map_err(|e| Error::runtime(format!("cell {cell}: {beh}: {e}")))?,
+        _ => unreachable!("ELASTIC_BEHAVIOURS lists 2 or 5 parameters"),
+    };
+    let rho = mat_param(m, beh, "RHO", cell)?.unwrap_or(0.0);
+    Ok((law, rho))
 }
 
 /// What a linear elastic computation is built from, checked.
@@ -105,6 +169,7 @@ pub(super) fn problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<Problem>
         return Err(Error::runtime(format!("{} holds no material field", chmat.label())));
     };
     let mut materials = vec![None; mesh.cells.len()];
+    let mut cache: Vec<(*const crate::concepts::Concept, (IsoElastic, f64))> = Vec::new();
     for &c in &bulk {
         let Some(mc) = &cells[c] else {
             return Err(Error::runtime(format!(
@@ -114,8 +179,20 @@ pub(super) fn problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<Problem>
         };
         let md = mc.data();
         let ConceptData::Material(mat) = &*md else { unreachable!("AFFE_MATERIAU holds materials") };
-        let rho = mat.real("ELAS", "RHO").unwrap_or(0.0);
-        materials[c] = Some((elastic_of(mat, &mesh.cell_names[c])?, rho));
+        // One evaluation per material concept.
+        let key = Rc::as_ptr(mc);
+        let entry = match cache.iter().find(|(k, _)| *k == key) {
+            Some((_, v)) => *v,
+            None => {
+                let v = elastic_of(mat, &mesh.cell_names[c])?;
+                if let Err(e) = v.0.check(modelisation) {
+                    return Err(Error::unsupported(format!("cell {}: {e}", mesh.cell_names[c])));
+                }
+                cache.push((key, v));
+                v
+            }
+        };
+        materials[c] = Some(entry);
     }
     let numbering = DofNumbering::for_cells(&mesh, modelisation.dim(), &bulk);
     Ok(Problem { mesh, modelisation, bulk, materials, numbering })
@@ -463,7 +540,7 @@ fn to_nodes(mesh: &Mesh, cells: &[Option<Vec<f64>>], ncmp: usize) -> Vec<f64> {
 }
 
 pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    const DONE: &[&str] = &["SIGM_ELNO", "SIGM_NOEU", "EPSI_ELNO", "EPSI_NOEU", "SIEF_ELGA", "EPSI_ELGA"];
+    const DONE: &[&str] = &["SIGM_ELNO", "SIGM_NOEU", "EPSI_ELNO", "EPSI_NOEU", "SIEF_ELGA", "SIGM_ELGA", "EPSI_ELGA", "SIRO_ELEM"];
     let rc = a.req_concept("RESULTAT")?;
     let mut wanted = Vec::new();
     for kw in ["CONTRAINTE", "DEFORMATION"] {
@@ -520,6 +597,10 @@ pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             sig_elga[c] = Some(g.sig.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
             eps_elga[c] = Some(g.eps.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
         }
+        let siro = match wanted.iter().any(|o| o == "SIRO_ELEM") {
+            true => Some(super::fields::siro_elem(&p, &model, depl, &only).map_err(|e| e.at(a.span))?),
+            false => None,
+        };
         let sn: Vec<String> = md.sigma_names().iter().map(|s| s.to_string()).collect();
         let en: Vec<String> = md.epsilon_names().iter().map(|s| s.to_string()).collect();
         for o in &wanted {
@@ -528,7 +609,9 @@ pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 "EPSI_ELNO" => Field::Elno { components: en.clone(), cells: eps_elno.clone() },
                 "SIGM_NOEU" => Field::Node { components: sn.clone(), values: to_nodes(mesh, &sig_elno, ns) },
                 "EPSI_NOEU" => Field::Node { components: en.clone(), values: to_nodes(mesh, &eps_elno, ns) },
-                "SIEF_ELGA" => Field::Elga { components: sn.clone(), cells: sig_elga.clone() },
+                // In linear elasticity the generalized and Cauchy stresses coincide.
+                "SIEF_ELGA" | "SIGM_ELGA" => Field::Elga { components: sn.clone(), cells: sig_elga.clone() },
+                "SIRO_ELEM" => siro.clone().expect("computed above"),
                 _ => Field::Elga { components: en.clone(), cells: eps_elga.clone() },
             };
             step.fields.insert(o.clone(), f);

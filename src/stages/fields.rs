@@ -1,0 +1,421 @@
+//! Fields of their own and fields on skins: CREA_CHAMP (AFFE, EXTR, EVAL)
+//! and CALC_CHAMP's SIRO_ELEM (the stress vector on skin cells).
+//!
+//! SIRO_ELEM follows Code_Aster's plane rosette (`te0554`): the stress of the
+//! bulk cell a skin cell bounds, at the skin's nodes (its SIGM_ELNO), is
+//! averaged over those nodes; the frame of the skin is the mean tangent
+//! `t1 = ∂x/∂ξ` (normalized), `t2 = ez` and the normal `n = t1 × ez`, i.e.
+//! `(t_y, -t_x)`: the skin cell's own orientation (MODI_MAILLAGE ORIE_PEAU
+//! makes it point out). The components are the stress vector `σ·n` and its
+//! normal part, `σ·t1`, `σ·t2` and the shear `t1·σ·n`.
+
+use super::model::{model_of, select_cells, select_nodes};
+use super::results::result_of;
+use super::statics::Problem;
+use super::Ctx;
+use crate::catalog::args::Args;
+use crate::concepts::model::Role;
+use crate::concepts::result::{Field, FieldData};
+use crate::concepts::{ConceptData, ConceptRef};
+use crate::diag::{Error, Result};
+use crate::fem::elasticity::{self, Modelisation};
+use crate::fem::geometry::{bounded_cells, cell_coords, node_to_cells};
+use crate::fem::reference::{node_coords, shape_deriv};
+use crate::mesh::{CellType, Mesh};
+use std::collections::HashSet;
+use std::rc::Rc;
+
+/// Component names of SIRO_ELEM, in Code_Aster's order (`EPJSIGM`).
+pub const SIRO_COMPONENTS: [&str; 16] = [
+    "SIG_NX", "SIG_NY", "SIG_NZ", "SIG_N", "SIG_TX", "SIG_TY", "SIG_TZ", "SIG_T1X", "SIG_T1Y", "SIG_T1Z", "SIG_T1",
+    "SIG_T2X", "SIG_T2Y", "SIG_T2Z", "SIG_T2", "SIG_TN",
+];
+
+type M3 = [[f64; 3]; 3];
+
+fn mat_vec(s: &M3, v: [f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|i| s[i][0] * v[0] + s[i][1] * v[1] + s[i][2] * v[2])
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
+    let l = dot(a, a).sqrt();
+    (l.is_finite() && l > 0.0).then(|| a.map(|x| x / l))
+}
+
+/// The rosette of a plane skin cell (a segment of a 2D model): its node
+/// coordinates and the mean stress tensor (SIXX, SIYY, SIZZ, SIXY) over its
+/// nodes give the 16 components of [`SIRO_COMPONENTS`]; None for a
+/// degenerate segment.
+pub fn rosette_2d(t: CellType, coords: &[[f64; 3]], sig: [f64; 4]) -> Option<[f64; 16]> {
+    // Mean tangent over the nodes (the shape derivatives at each node).
+    let mut t1 = [0.0; 3];
+    for xi in node_coords(t) {
+        for (g, x) in shape_deriv(t, xi).iter().zip(coords) {
+            for k in 0..2 {
+                t1[k] += g[0] * x[k];
+            }
+        }
+    }
+    let t1 = unit(t1)?;
+    let n = unit(cross(t1, [0.0, 0.0, 1.0]))?;
+    let t2 = cross(n, t1);
+    let s: M3 = [[sig[0], sig[3], 0.0], [sig[3], sig[1], 0.0], [0.0, 0.0, sig[2]]];
+    let (sn, st1, st2) = (mat_vec(&s, n), mat_vec(&s, t1), mat_vec(&s, t2));
+    Some([
+        sn[0],
+        sn[1],
+        sn[2],
+        dot(n, sn),
+        st1[0],
+        st1[1],
+        st1[2],
+        st1[0],
+        st1[1],
+        st1[2],
+        dot(t1, st1),
+        st2[0],
+        st2[1],
+        st2[2],
+        dot(t2, st2),
+        dot(t1, sn),
+    ])
+}
+
+/// SIRO_ELEM of one displacement field: on every skin cell of the model that
+/// `only` keeps, the rosette of the stress of the bulk cell it bounds (the
+/// first one, in cell order, when it lies between two).
+pub(super) fn siro_elem(p: &Problem, model: &ConceptRef, depl: &[f64], only: &dyn Fn(&usize) -> bool) -> Result<Field> {
+    let mesh = &p.mesh;
+    let md = p.modelisation;
+    if md == Modelisation::ThreeD {
+        return Err(Error::runtime("SIRO_ELEM on 3D models is not supported yet (plane models are)"));
+    }
+    let dim = md.dim();
+    let m = model_of(model)?;
+    let node_cells = node_to_cells(mesh);
+    let bulk: HashSet<usize> = p.bulk.iter().copied().collect();
+    let mut cells = vec![None; mesh.cells.len()];
+    for (c, e) in m.elements.iter().enumerate() {
+        if e.as_ref().map(|e| e.role) != Some(Role::Skin) || !only(&c) || mesh.cell_types[c].dim() != dim - 1 {
+            continue;
+        }
+        let Some(&v) = bounded_cells(mesh, &node_cells, c, Some(&bulk)).first() else { continue };
+        let ue: Vec<f64> = mesh.cells[v].iter().flat_map(|&nd| (0..dim).map(move |k| depl[nd * dim + k])).collect();
+        let mat = &p.materials[v].as_ref().expect("bulk cells have a material").0;
+        let (_, sig) = elasticity::node_fields(md, mat, mesh.cell_types[v], &cell_coords(mesh, v), &ue)
+            .map_err(|e| Error::runtime(format!("cell {}: {e}", mesh.cell_names[v])))?;
+        let mut mean = [0.0; 4];
+        for nd in &mesh.cells[c] {
+            let i = mesh.cells[v].iter().position(|x| x == nd).expect("a bounded cell holds the skin's nodes");
+            for (k, m) in mean.iter_mut().enumerate() {
+                *m += sig[i][k] / mesh.cells[c].len() as f64;
+            }
+        }
+        let r = rosette_2d(mesh.cell_types[c], &cell_coords(mesh, c), mean)
+            .ok_or_else(|| Error::runtime(format!("SIRO_ELEM: cell {} is degenerate", mesh.cell_names[c])))?;
+        cells[c] = Some(r.to_vec());
+    }
+    Ok(Field::Elem { components: SIRO_COMPONENTS.iter().map(|s| s.to_string()).collect(), cells })
+}
+
+// ------------------------------------------------------------------ CREA_CHAMP
+
+/// The standalone field behind a concept.
+pub fn field_of(c: &ConceptRef) -> Result<std::cell::Ref<'_, FieldData>> {
+    std::cell::Ref::filter_map(c.data(), |d| if let ConceptData::Field(f) = d { Some(f) } else { None })
+        .map_err(|_| Error::runtime(format!("{} ({}) holds no field", c.label(), c.kind())))
+}
+
+/// The current mesh of a field's mesh concept.
+pub fn mesh_of_field(f: &FieldData) -> Result<Rc<Mesh>> {
+    super::mesh::mesh_of(&f.mesh_concept)
+}
+
+/// The location part of TYPE_CHAM and whether the values are functions.
+fn type_cham(a: &Args) -> Result<(&str, bool)> {
+    let t = a.req_text("TYPE_CHAM")?;
+    let loc = t.split('_').next().unwrap_or("");
+    Ok((loc, t.ends_with("_F")))
+}
+
+fn same_location(loc: &str, f: &Field) -> bool {
+    matches!(
+        (loc, f),
+        ("ELEM", Field::Elem { .. })
+            | ("ELNO", Field::Elno { .. })
+            | ("ELGA", Field::Elga { .. })
+            | ("NOEU", Field::Node { .. })
+    )
+}
+
+pub fn crea_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    match a.req_text("OPERATION")? {
+        "AFFE" => affe(a),
+        "EXTR" => extr(a),
+        "EVAL" => eval(a),
+        o => Err(a.err("OPERATION", format!("OPERATION='{o}' is not supported yet"))),
+    }
+    .map(|f| Some(ConceptData::Field(f)))
+}
+
+fn affe(a: &Args) -> Result<FieldData> {
+    let (loc, func) = type_cham(a)?;
+    if loc != "ELEM" && (loc != "NOEU" || func) {
+        return Err(a.err("TYPE_CHAM", format!("TYPE_CHAM='{}' is not supported yet", a.text("TYPE_CHAM").unwrap())));
+    }
+    let (mesh_concept, on_model): (ConceptRef, Option<Vec<bool>>) = match a.concept("MODELE") {
+        Some(mo) => {
+            let m = model_of(&mo)?;
+            (m.mesh_concept.clone(), Some(m.elements.iter().map(Option::is_some).collect()))
+        }
+        None => (a.req_concept("MAILLAGE")?, None),
+    };
+    let mesh = super::mesh::mesh_of(&mesh_concept)?;
+    let mesh_name = mesh_concept.label();
+    let prol_zero = a.text("PROL_ZERO") == Some("OUI");
+    // Components in order of first appearance.
+    let mut comps: Vec<String> = Vec::new();
+    for occ in a.facts("AFFE") {
+        for c in occ.texts("NOM_CMP") {
+            if !comps.contains(&c) {
+                comps.push(c);
+            }
+        }
+    }
+    let n = comps.len();
+    let fill = if prol_zero { 0.0 } else { f64::NAN };
+    let nplaces = if loc == "NOEU" { mesh.coords.len() } else { mesh.cells.len() };
+    let mut values: Vec<Option<Vec<f64>>> = vec![None; nplaces];
+    let mut funcs: Vec<Option<Vec<Option<ConceptRef>>>> = vec![None; nplaces];
+    for occ in a.facts("AFFE") {
+        for kw in ["VALE_I", "VALE_C"] {
+            if occ.given(kw) {
+                return Err(occ.err(kw, "not supported yet"));
+            }
+        }
+        let names = occ.texts("NOM_CMP");
+        let count = if func { occ.concepts("VALE_F").len() } else { occ.reals("VALE").len() };
+        let vkw = if func { "VALE_F" } else { "VALE" };
+        if count != names.len() {
+            return Err(occ.err(vkw, format!("{} values for {} components (NOM_CMP)", count, names.len())));
+        }
+        if !func && occ.given("VALE_F") || func && occ.given("VALE") {
+            return Err(occ.err(vkw, format!("{vkw} is required by TYPE_CHAM='{}'", a.text("TYPE_CHAM").unwrap())));
+        }
+        let places: Vec<usize> = if loc == "NOEU" {
+            select_nodes(&mesh, occ, &mesh_name)?
+        } else {
+            let sel = select_cells(&mesh, occ, &mesh_name)?;
+            sel.into_iter().filter(|&c| on_model.as_ref().is_none_or(|m| m[c])).collect()
+        };
+        for p in places {
+            let idx: Vec<usize> = names.iter().map(|c| comps.iter().position(|x| x == c).unwrap()).collect();
+            if func {
+                let slot = funcs[p].get_or_insert_with(|| vec![None; n]);
+                for (&k, f) in idx.iter().zip(occ.concepts("VALE_F")) {
+                    slot[k] = Some(f);
+                }
+                values[p].get_or_insert_with(|| vec![f64::NAN; n]);
+            } else {
+                let slot = values[p].get_or_insert_with(|| vec![fill; n]);
+                for (&k, v) in idx.iter().zip(occ.reals("VALE")) {
+                    slot[k] = v;
+                }
+            }
+        }
+    }
+    if prol_zero {
+        // Every other place of the model (or mesh) gets zeros (the zero function).
+        for (p, v) in values.iter_mut().enumerate() {
+            if loc == "ELEM" && on_model.as_ref().is_some_and(|m| !m[p]) {
+                continue;
+            }
+            if v.is_none() {
+                *v = Some(vec![if func { f64::NAN } else { 0.0 }; n]);
+                if func {
+                    funcs[p] = Some(vec![None; n]);
+                }
+            }
+        }
+    }
+    let field = if loc == "NOEU" {
+        Field::Node {
+            components: comps,
+            values: values.into_iter().flat_map(|v| v.unwrap_or(vec![f64::NAN; n])).collect(),
+        }
+    } else {
+        Field::Elem { components: comps, cells: values }
+    };
+    Ok(FieldData { mesh_concept, field, functions: func.then_some(funcs) })
+}
+
+fn extr(a: &Args) -> Result<FieldData> {
+    let (loc, _) = type_cham(a)?;
+    let rc =
+        a.concept("RESULTAT").ok_or_else(|| a.err("RESULTAT", "only extraction from a result is supported yet"))?;
+    if a.given("TYPE_MAXI") {
+        return Err(a.err("TYPE_MAXI", "not supported yet"));
+    }
+    let name = rc.label();
+    let r = result_of(&rc)?;
+    let step = if let Some(n) = a.int("NUME_ORDRE") {
+        r.by_order(n).ok_or_else(|| a.err("NUME_ORDRE", format!("result {name} has no order number {n}")))?
+    } else if let Some(t) = a.real("INST") {
+        let prec = a.real("PRECISION").unwrap_or(1e-6);
+        r.by_inst(t, prec).ok_or_else(|| a.err("INST", format!("result {name} has no step at time {t}")))?
+    } else {
+        let kw = ["FREQ", "NUME_MODE", "NOEUD_CMP", "NOM_CAS", "ANGLE"]
+            .into_iter()
+            .find(|k| a.given(k))
+            .unwrap_or("NUME_ORDRE");
+        return Err(a.err(kw, "not supported yet"));
+    };
+    let cham = a.req_text("NOM_CHAM")?;
+    let field = step
+        .fields
+        .get(cham)
+        .ok_or_else(|| a.err("NOM_CHAM", format!("result {name} has no field {cham} at order {}", step.nume_ordre)))?;
+    if !same_location(loc, field) {
+        return Err(a.err(
+            "TYPE_CHAM",
+            format!("field {cham} of {name} is not a field of type {}", a.text("TYPE_CHAM").unwrap()),
+        ));
+    }
+    let mesh_concept = model_of(&r.model)?.mesh_concept.clone();
+    Ok(FieldData { mesh_concept, field: field.clone(), functions: None })
+}
+
+/// A function, nappe or formula evaluated with its parameters looked up by name.
+fn eval_named(f: &ConceptRef, arg: &dyn Fn(&str) -> Result<f64>) -> Result<f64> {
+    match &*f.data() {
+        ConceptData::Function(g) if g.nom_para == "TOUTPARA" => g.eval(0.0),
+        ConceptData::Function(g) => g.eval(arg(&g.nom_para)?),
+        ConceptData::Nappe(g) => g.eval(arg(&g.nom_para)?, arg(&g.nom_para_fonc)?),
+        ConceptData::Formula(g) => {
+            let vals: Vec<f64> = g.nom_para.iter().map(|p| arg(p)).collect::<Result<_>>()?;
+            g.eval(&vals)
+        }
+        _ => Err(Error::runtime(format!("{} ({}) is not a function", f.label(), f.kind()))),
+    }
+}
+
+/// Evaluate the functions of a field by cell (None: the zero function) with
+/// their parameters taken by name among the components of `paras` (fields by
+/// cell) on the same cell.
+pub fn eval_cells(
+    funcs: &[Option<Vec<Option<ConceptRef>>>],
+    paras: &[&Field],
+    cell_names: &[String],
+) -> Result<Vec<Option<Vec<f64>>>> {
+    let mut out = vec![None; funcs.len()];
+    for (c, fs) in funcs.iter().enumerate() {
+        let Some(fs) = fs else { continue };
+        let arg = |name: &str| -> Result<f64> {
+            for p in paras {
+                let Field::Elem { cells, .. } = p else { continue };
+                if let (Some(k), Some(Some(v))) = (p.component(name), cells.get(c)) {
+                    if !v[k].is_nan() {
+                        return Ok(v[k]);
+                    }
+                }
+            }
+            Err(Error::runtime(format!(
+                "CHAM_PARA: parameter {name} has no value on cell {} in the parameter fields",
+                cell_names[c]
+            )))
+        };
+        let vals: Vec<f64> =
+            fs.iter().map(|g| g.as_ref().map_or(Ok(0.0), |g| eval_named(g, &arg))).collect::<Result<_>>()?;
+        out[c] = Some(vals);
+    }
+    Ok(out)
+}
+
+fn eval(a: &Args) -> Result<FieldData> {
+    let (loc, func) = type_cham(a)?;
+    if func {
+        return Err(a.err("TYPE_CHAM", "the result of EVAL is a field of reals (*_R)"));
+    }
+    let fc = a.req_concept("CHAM_F")?;
+    let f = field_of(&fc)?;
+    let (Field::Elem { components, .. }, Some(funcs)) = (&f.field, &f.functions) else {
+        return Err(a.err("CHAM_F", format!("{} is not a field of functions by cell (ELEM_*_F)", fc.label())));
+    };
+    if loc != "ELEM" {
+        return Err(a.err("TYPE_CHAM", format!("TYPE_CHAM='{}' is not supported yet", a.text("TYPE_CHAM").unwrap())));
+    }
+    let mesh = mesh_of_field(&f)?;
+    let paras = a.concepts("CHAM_PARA");
+    let para_data: Vec<std::cell::Ref<'_, FieldData>> = paras.iter().map(field_of).collect::<Result<_>>()?;
+    for (p, d) in paras.iter().zip(&para_data) {
+        if !matches!(d.field, Field::Elem { .. }) || d.functions.is_some() {
+            return Err(a.err("CHAM_PARA", format!("{} is not a field of reals by cell (ELEM_*_R)", p.label())));
+        }
+    }
+    let para_fields: Vec<&Field> = para_data.iter().map(|d| &d.field).collect();
+    let out = eval_cells(funcs, &para_fields, &mesh.cell_names).map_err(|e| e.at(a.span))?;
+    Ok(FieldData {
+        mesh_concept: f.mesh_concept.clone(),
+        field: Field::Elem { components: components.clone(), cells: out },
+        functions: None,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rosette_of_a_uniform_stress_on_a_vertical_segment() {
+        // σ = [[100, 50], [50, 200]], SIZZ = 7; segment from (1,0) to (1,1): t1 = ey, n = ex.
+        let r = rosette_2d(CellType::Seg2, &[[1.0, 0.0, 0.0], [1.0, 1.0, 0.0]], [100.0, 200.0, 7.0, 50.0]).unwrap();
+        let want = [100.0, 50.0, 0.0, 100.0, 50.0, 200.0, 0.0, 50.0, 200.0, 0.0, 200.0, 0.0, 0.0, 7.0, 7.0, 50.0];
+        for (k, (g, w)) in r.iter().zip(want).enumerate() {
+            assert!((g - w).abs() < 1e-12, "{}: {g} != {w}", SIRO_COMPONENTS[k]);
+        }
+        // Reversed segment: n = -ey... here t1 = -ey, n = -ex; σ·n and σ·t1 change sign, the
+        // normal and tangential stresses and the shear t1·σ·n do not.
+        let r = rosette_2d(CellType::Seg2, &[[1.0, 1.0, 0.0], [1.0, 0.0, 0.0]], [100.0, 200.0, 7.0, 50.0]).unwrap();
+        assert_eq!((r[0], r[1], r[3], r[4], r[10], r[15]), (-100.0, -50.0, 100.0, -50.0, 200.0, 50.0));
+    }
+
+    #[test]
+    fn eval_of_a_formula_on_two_fields() {
+        use crate::concepts::{Concept, ConceptKind};
+        let globals: crate::interp::Scope = Default::default();
+        let form =
+            crate::interp::Formula::new("SIG_N * X1 + 1", vec!["SIG_N".into(), "X1".into()], vec![], globals).unwrap();
+        let form = Concept::new(ConceptKind::Formule, ConceptData::Formula(form));
+        // Cell 0: the formula; cell 1: the zero function; cell 2: nothing.
+        let funcs = vec![Some(vec![Some(form.clone())]), Some(vec![None]), None];
+        let siro = Field::Elem {
+            components: vec!["SIG_NX".into(), "SIG_N".into()],
+            cells: vec![Some(vec![1.0, 100.0]), None, None],
+        };
+        let neut = Field::Elem { components: vec!["X1".into()], cells: vec![Some(vec![3.0]), Some(vec![1.0]), None] };
+        let names: Vec<String> = ["M1", "M2", "M3"].iter().map(|s| s.to_string()).collect();
+        let out = eval_cells(&funcs, &[&siro, &neut], &names).unwrap();
+        assert_eq!(out, vec![Some(vec![301.0]), Some(vec![0.0]), None]);
+        // A parameter missing on a cell is an error naming it.
+        let funcs = vec![None, Some(vec![Some(form)]), None];
+        let e = eval_cells(&funcs, &[&siro, &neut], &names).unwrap_err();
+        assert!(e.msg.contains("SIG_N") && e.msg.contains("M2"), "{}", e.msg);
+    }
+
+    #[test]
+    fn rosette_of_a_top_edge_run_backwards() {
+        // The top edge of a square run counterclockwise: from (1,1) to (0,1): t1 = -ex, n = ey.
+        let r = rosette_2d(CellType::Seg2, &[[1.0, 1.0, 0.0], [0.0, 1.0, 0.0]], [100.0, 200.0, 0.0, 50.0]).unwrap();
+        assert_eq!(&r[..4], &[50.0, 200.0, 0.0, 200.0]);
+        assert_eq!((r[4], r[5], r[10], r[15]), (-100.0, -50.0, 100.0, -50.0));
+        assert!(rosette_2d(CellType::Seg2, &[[1.0, 1.0, 0.0], [1.0, 1.0, 0.0]], [0.0; 4]).is_none());
+    }
+}
