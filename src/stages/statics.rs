@@ -539,11 +539,77 @@ fn to_nodes(mesh: &Mesh, cells: &[Option<Vec<f64>>], ncmp: usize) -> Vec<f64> {
     sum
 }
 
+/// The components of SIEQ_* we compute (Code_Aster's SIEQ also has the
+/// principal directions VECT_*, not computed yet).
+const SIEQ_COMPONENTS: [&str; 8] = ["VMIS", "TRESCA", "PRIN_1", "PRIN_2", "PRIN_3", "VMIS_SG", "TRSIG", "TRIAX"];
+
+/// Principal stresses (ascending) of a symmetric tensor given as
+/// [xx, yy, zz, xy, (xz, yz)], by cyclic Jacobi rotations (accurate to
+/// rounding even for nearly equal eigenvalues).
+fn principal(s: &[f64]) -> [f64; 3] {
+    let (xz, yz) = if s.len() >= 6 { (s[4], s[5]) } else { (0.0, 0.0) };
+    let mut a = [[s[0], s[3], xz], [s[3], s[1], yz], [xz, yz, s[2]]];
+    for _ in 0..50 {
+        let off = a[0][1].abs() + a[0][2].abs() + a[1][2].abs();
+        let scale = a[0][0].abs() + a[1][1].abs() + a[2][2].abs() + off;
+        if off <= f64::EPSILON * 1e-3 * scale.max(f64::MIN_POSITIVE) {
+            break;
+        }
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            if a[p][q] == 0.0 {
+                continue;
+            }
+            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+            let t = if theta == 0.0 { 1.0 } else { t };
+            let c = 1.0 / (t * t + 1.0).sqrt();
+            let sn = t * c;
+            // A <- Jᵀ A J with the rotation in the (p, q) plane.
+            for k in 0..3 {
+                let (akp, akq) = (a[k][p], a[k][q]);
+                a[k][p] = c * akp - sn * akq;
+                a[k][q] = sn * akp + c * akq;
+            }
+            for k in 0..3 {
+                let (apk, aqk) = (a[p][k], a[q][k]);
+                a[p][k] = c * apk - sn * aqk;
+                a[q][k] = sn * apk + c * aqk;
+            }
+        }
+    }
+    let mut e = [a[0][0], a[1][1], a[2][2]];
+    e.sort_by(|x, y| x.total_cmp(y));
+    e
+}
+
+/// SIEQ components of one stress tensor.
+fn equivalent_stresses(s: &[f64]) -> Vec<f64> {
+    let tr = s[0] + s[1] + s[2];
+    let m = tr / 3.0;
+    let shear: f64 = s.iter().skip(3).map(|v| v * v).sum();
+    let j2 = 0.5 * ((s[0] - m).powi(2) + (s[1] - m).powi(2) + (s[2] - m).powi(2)) + shear;
+    let vmis = (3.0 * j2).sqrt();
+    let pr = principal(s);
+    let triax = if vmis > 0.0 { m / vmis } else { 0.0 };
+    vec![vmis, pr[2] - pr[0], pr[0], pr[1], pr[2], if tr < 0.0 { -vmis } else { vmis }, tr, triax]
+}
+
 pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    const DONE: &[&str] = &["SIGM_ELNO", "SIGM_NOEU", "EPSI_ELNO", "EPSI_NOEU", "SIEF_ELGA", "SIGM_ELGA", "EPSI_ELGA", "SIRO_ELEM"];
+    const DONE: &[&str] = &[
+        "SIGM_ELNO",
+        "SIGM_NOEU",
+        "EPSI_ELNO",
+        "EPSI_NOEU",
+        "SIEF_ELGA",
+        "SIGM_ELGA",
+        "EPSI_ELGA",
+        "SIRO_ELEM",
+        "SIEQ_ELNO",
+        "SIEQ_NOEU",
+    ];
     let rc = a.req_concept("RESULTAT")?;
     let mut wanted = Vec::new();
-    for kw in ["CONTRAINTE", "DEFORMATION"] {
+    for kw in ["CONTRAINTE", "DEFORMATION", "CRITERES"] {
         for o in a.texts(kw) {
             if !DONE.contains(&o.as_str()) {
                 return Err(a.err(kw, format!("option {o} is not supported yet")));
@@ -551,9 +617,7 @@ pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             wanted.push(o);
         }
     }
-    for kw in
-        ["CRITERES", "ENERGIE", "FORCE", "VARI_INTERNE", "ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"]
-    {
+    for kw in ["ENERGIE", "FORCE", "VARI_INTERNE", "ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"] {
         if a.given(kw) {
             return Err(a.err(kw, "not supported yet"));
         }
@@ -612,6 +676,18 @@ pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 // In linear elasticity the generalized and Cauchy stresses coincide.
                 "SIEF_ELGA" | "SIGM_ELGA" => Field::Elga { components: sn.clone(), cells: sig_elga.clone() },
                 "SIRO_ELEM" => siro.clone().expect("computed above"),
+                "SIEQ_ELNO" | "SIEQ_NOEU" => {
+                    let cells: Vec<Option<Vec<f64>>> = sig_elno
+                        .iter()
+                        .map(|c| c.as_ref().map(|v| v.chunks(ns).flat_map(equivalent_stresses).collect()))
+                        .collect();
+                    let names = SIEQ_COMPONENTS.iter().map(|s| s.to_string()).collect();
+                    if o == "SIEQ_ELNO" {
+                        Field::Elno { components: names, cells }
+                    } else {
+                        Field::Node { components: names, values: to_nodes(mesh, &cells, SIEQ_COMPONENTS.len()) }
+                    }
+                }
                 _ => Field::Elga { components: en.clone(), cells: eps_elga.clone() },
             };
             step.fields.insert(o.clone(), f);
@@ -620,4 +696,31 @@ pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let r = result_of(&rc)?;
     let data = ResultData { model: r.model.clone(), material: r.material.clone(), loads: r.loads.clone(), steps };
     Ok(Some(ConceptData::Result(data)))
+}
+
+#[cfg(test)]
+mod sieq_tests {
+    use super::*;
+
+    #[test]
+    fn equivalent_stresses_of_known_tensors() {
+        // Uniaxial: VMIS = TRESCA = |s|, principal (0, 0, s).
+        let e = equivalent_stresses(&[0.0, 0.0, 7.0, 0.0, 0.0, 0.0]);
+        assert!((e[0] - 7.0).abs() < 1e-12 && (e[1] - 7.0).abs() < 1e-12);
+        assert!(e[2].abs() < 1e-12 && e[3].abs() < 1e-12 && (e[4] - 7.0).abs() < 1e-12);
+        // Pure shear xy = t: principal (-t, 0, t), VMIS = sqrt(3) t, TRESCA = 2t.
+        let e = equivalent_stresses(&[0.0, 0.0, 0.0, 2.0]);
+        assert!((e[0] - 2.0 * 3f64.sqrt()).abs() < 1e-12 && (e[1] - 4.0).abs() < 1e-12);
+        assert!((e[2] + 2.0).abs() < 1e-12 && e[3].abs() < 1e-12 && (e[4] - 2.0).abs() < 1e-12);
+        // Hydrostatic: VMIS 0, TRSIG = 3p.
+        let e = equivalent_stresses(&[-5.0, -5.0, -5.0, 0.0, 0.0, 0.0]);
+        assert!(e[0].abs() < 1e-12 && (e[6] + 15.0).abs() < 1e-12);
+        // A general tensor: principal values are the eigenvalues (their sum and product).
+        let s = [3.0, -1.0, 2.0, 0.5, -0.7, 1.1];
+        let p = principal(&s);
+        assert!((p[0] + p[1] + p[2] - 4.0).abs() < 1e-12);
+        let det = s[0] * (s[1] * s[2] - s[5] * s[5]) - s[3] * (s[3] * s[2] - s[5] * s[4])
+            + s[4] * (s[3] * s[5] - s[1] * s[4]);
+        assert!((p[0] * p[1] * p[2] - det).abs() < 1e-10);
+    }
 }
