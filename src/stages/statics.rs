@@ -565,15 +565,15 @@ fn principal(s: &[f64]) -> [f64; 3] {
             let c = 1.0 / (t * t + 1.0).sqrt();
             let sn = t * c;
             // A <- Jᵀ A J with the rotation in the (p, q) plane.
-            for k in 0..3 {
-                let (akp, akq) = (a[k][p], a[k][q]);
-                a[k][p] = c * akp - sn * akq;
-                a[k][q] = sn * akp + c * akq;
+            for row in a.iter_mut() {
+                let (akp, akq) = (row[p], row[q]);
+                row[p] = c * akp - sn * akq;
+                row[q] = sn * akp + c * akq;
             }
+            let (rp, rq) = (a[p], a[q]);
             for k in 0..3 {
-                let (apk, aqk) = (a[p][k], a[q][k]);
-                a[p][k] = c * apk - sn * aqk;
-                a[q][k] = sn * apk + c * aqk;
+                a[p][k] = c * rp[k] - sn * rq[k];
+                a[q][k] = sn * rp[k] + c * rq[k];
             }
         }
     }
