@@ -38,48 +38,42 @@ fn step_of<'r>(r: &'r ResultData, occ: &Args, name: &str) -> Result<&'r Step> {
     }
 }
 
-fn one_node(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Option<usize>> {
-    if let Some(n) = occ.text("NOEUD") {
-        return mesh
-            .node_names
+/// The single entity an occurrence names: by name (`name_kw`) or by a group
+/// of exactly one member (`group_kw`); `what` is "node" or "cell".
+fn one_entity(
+    names: &[String],
+    groups: &std::collections::BTreeMap<String, Vec<usize>>,
+    occ: &Args,
+    name_kw: &str,
+    group_kw: &str,
+    what: &str,
+    mesh_name: &str,
+) -> Result<Option<usize>> {
+    if let Some(n) = occ.text(name_kw) {
+        return names
             .iter()
             .position(|x| x == n)
             .map(Some)
-            .ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {mesh_name}")));
+            .ok_or_else(|| occ.err(name_kw, format!("{what} '{n}' is not in mesh {mesh_name}")));
     }
-    if let Some(g) = occ.text("GROUP_NO") {
-        let m = mesh
-            .node_groups
+    if let Some(g) = occ.text(group_kw) {
+        let m = groups
             .get(g)
-            .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {mesh_name}")))?;
+            .ok_or_else(|| occ.err(group_kw, format!("group of {what}s '{g}' is not in mesh {mesh_name}")))?;
         if m.len() != 1 {
-            return Err(occ.err("GROUP_NO", format!("group '{g}' holds {} nodes; the test needs exactly one", m.len())));
+            return Err(occ.err(group_kw, format!("group '{g}' holds {} {what}s; the test needs exactly one", m.len())));
         }
         return Ok(Some(m[0]));
     }
     Ok(None)
 }
 
+fn one_node(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Option<usize>> {
+    one_entity(&mesh.node_names, &mesh.node_groups, occ, "NOEUD", "GROUP_NO", "node", mesh_name)
+}
+
 fn one_cell(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Option<usize>> {
-    if let Some(n) = occ.text("MAILLE") {
-        return mesh
-            .cell_names
-            .iter()
-            .position(|x| x == n)
-            .map(Some)
-            .ok_or_else(|| occ.err("MAILLE", format!("cell '{n}' is not in mesh {mesh_name}")));
-    }
-    if let Some(g) = occ.text("GROUP_MA") {
-        let m = mesh
-            .cell_groups
-            .get(g)
-            .ok_or_else(|| occ.err("GROUP_MA", format!("group of cells '{g}' is not in mesh {mesh_name}")))?;
-        if m.len() != 1 {
-            return Err(occ.err("GROUP_MA", format!("group '{g}' holds {} cells; the test needs exactly one", m.len())));
-        }
-        return Ok(Some(m[0]));
-    }
-    Ok(None)
+    one_entity(&mesh.cell_names, &mesh.cell_groups, occ, "MAILLE", "GROUP_MA", "cell", mesh_name)
 }
 
 /// The value of one component of a field at the place an occurrence names.
