@@ -147,6 +147,14 @@ impl Args {
         self.facts(name).first()
     }
 
+    /// Stop on keywords the stage does not implement, if the user gave them.
+    pub fn refuse(&self, names: &[&str]) -> Result<()> {
+        match names.iter().find(|n| self.given(n)) {
+            Some(n) => Err(self.err(n, "not supported yet")),
+            None => Ok(()),
+        }
+    }
+
     /// A runtime error located at keyword `name` of this command.
     pub fn err(&self, name: &str, msg: impl Into<String>) -> Error {
         let msg = msg.into();

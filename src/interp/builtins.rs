@@ -364,7 +364,28 @@ fn round_half_even(x: f64, nd: i64) -> f64 {
 }
 
 fn parse_int_text(s: &str, base: u32) -> Result<i64> {
+    if base != 0 && !(2..=36).contains(&base) {
+        return Err(Error::python("ValueError: int() base must be >= 2 and <= 36, or 0"));
+    }
     let t: String = s.trim().chars().filter(|c| *c != '_').collect();
+    if base == 0 {
+        let l = t.to_ascii_lowercase();
+        let (neg, body) = match l.strip_prefix('-') {
+            Some(b) => (true, b.to_string()),
+            None => (false, l.trim_start_matches('+').to_string()),
+        };
+        let (b, digits) = if let Some(d) = body.strip_prefix("0x") {
+            (16, d.to_string())
+        } else if let Some(d) = body.strip_prefix("0o") {
+            (8, d.to_string())
+        } else if let Some(d) = body.strip_prefix("0b") {
+            (2, d.to_string())
+        } else {
+            (10, body)
+        };
+        let v = parse_int_text(&digits, b)?;
+        return Ok(if neg { -v } else { v });
+    }
     i64::from_str_radix(&t, base).map_err(|_| {
         Error::python(format!("ValueError: invalid literal for int() with base {base}: {}", format::str_repr(s)))
     })
@@ -506,7 +527,11 @@ fn simple_builtin(name: &str, args: Vec<Value>, kw: &[(String, Value)]) -> Resul
                     if !f.is_finite() {
                         return Err(Error::python("ValueError: cannot convert float NaN or infinity to integer"));
                     }
-                    Ok(Value::Int(f.round_ties_even() as i64))
+                    let r = f.round_ties_even();
+                    if r.abs() >= 9.2e18 {
+                        return Err(Error::python("OverflowError: the result does not fit a 64-bit integer"));
+                    }
+                    Ok(Value::Int(r as i64))
                 }
                 (v, n) if v.as_int().is_some() => {
                     let n = int_arg(name, n)?;
@@ -528,6 +553,9 @@ fn simple_builtin(name: &str, args: Vec<Value>, kw: &[(String, Value)]) -> Resul
                 (Some(Value::Float(f)), None) => {
                     if !f.is_finite() {
                         return Err(Error::python("ValueError: cannot convert float NaN or infinity to integer"));
+                    }
+                    if f.trunc().abs() >= 9.2e18 {
+                        return Err(Error::python("OverflowError: the result does not fit a 64-bit integer"));
                     }
                     Ok(Value::Int(f.trunc() as i64))
                 }

@@ -672,8 +672,10 @@ impl<'h> Interp<'h> {
             return host.call_command(name, kw, span, target);
         }
         if let Value::Builtin(Builtin("print")) = fv {
-            let sep = kw.iter().find(|k| k.name == "sep").map(|k| format::to_str(&k.value));
-            let end = kw.iter().find(|k| k.name == "end").map(|k| format::to_str(&k.value));
+            let opt = |name: &str| {
+                kw.iter().find(|k| k.name == name && !matches!(k.value, Value::None)).map(|k| format::to_str(&k.value))
+            };
+            let (sep, end) = (opt("sep"), opt("end"));
             let text: Vec<String> = pos.iter().map(format::to_str).collect();
             let mut line = text.join(sep.as_deref().unwrap_or(" "));
             line.push_str(end.as_deref().unwrap_or("\n"));

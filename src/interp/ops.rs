@@ -53,13 +53,14 @@ pub fn binop(op: BinOp, a: &Value, b: &Value) -> Result<Value> {
                 if y == 0 {
                     return Err(zero_div());
                 }
-                Int(x.div_euclid(y) - if (x.rem_euclid(y) != 0) && y < 0 { 1 } else { 0 })
+                let q = x.checked_div(y).ok_or_else(overflow)?;
+                Int(if (x % y != 0) && ((x < 0) != (y < 0)) { q - 1 } else { q })
             }
             BinOp::Mod => {
                 if y == 0 {
                     return Err(Error::python("ZeroDivisionError: integer modulo by zero"));
                 }
-                let r = x % y;
+                let r = x.checked_rem(y).ok_or_else(overflow)?;
                 Int(if r != 0 && ((r < 0) != (y < 0)) { r + y } else { r })
             }
             BinOp::Pow => {
@@ -91,7 +92,10 @@ pub fn binop(op: BinOp, a: &Value, b: &Value) -> Result<Value> {
                 if y == 0.0 {
                     return Err(Error::python("ZeroDivisionError: float floor division by zero"));
                 }
-                (x / y).floor()
+                // As CPython: from the remainder, so that 1 // 0.1 == 9.0.
+                let m = x % y;
+                let m = if m != 0.0 && ((m < 0.0) != (y < 0.0)) { m + y } else { m };
+                ((x - m) / y).round()
             }
             BinOp::Mod => {
                 if y == 0.0 {
@@ -494,5 +498,23 @@ mod tests {
         assert_eq!(format::to_str(&get_item(&l, &s).unwrap()), "[1, 3, 5]");
         let r = Value::tuple(vec![Value::Builtin(Builtin("slice")), Value::None, Value::None, Value::Int(-1)]);
         assert_eq!(format::to_str(&get_item(&l, &r).unwrap()), "[5, 4, 3, 2, 1, 0]");
+    }
+}
+
+#[cfg(test)]
+mod review_tests {
+    use super::*;
+
+    #[test]
+    fn floor_division_and_overflow_as_cpython() {
+        assert!(
+            matches!(binop(BinOp::FloorDiv, &Value::Float(1.0), &Value::Float(0.1)).unwrap(), Value::Float(f) if f == 9.0)
+        );
+        assert!(
+            matches!(binop(BinOp::FloorDiv, &Value::Float(-7.0), &Value::Float(2.0)).unwrap(), Value::Float(f) if f == -4.0)
+        );
+        assert!(binop(BinOp::Mod, &Value::Int(i64::MIN), &Value::Int(-1)).is_err());
+        assert!(binop(BinOp::FloorDiv, &Value::Int(i64::MIN), &Value::Int(-1)).is_err());
+        assert!(matches!(binop(BinOp::FloorDiv, &Value::Int(7), &Value::Int(-2)).unwrap(), Value::Int(-4)));
     }
 }

@@ -20,20 +20,27 @@ fn num(v: f64) -> String {
 
 /// Print the result fields of one RESU occurrence.
 fn print_occurrence(occ: &Args, out: &mut String) -> Result<()> {
-    for kw in [
+    occ.refuse(&[
         "CHAM_GD",
         "MAILLAGE",
-        "NOM_CHAM_MED",
         "SOUS_TITRE",
-        "NOM_VARI",
         "VALE_MAX",
         "VALE_MIN",
         "BORNE_SUP",
         "BORNE_INF",
-    ] {
-        if occ.given(kw) {
-            return Err(occ.err(kw, "not supported yet with FORMAT='RESULTAT'"));
-        }
+        "LIST_ORDRE",
+        "LIST_INST",
+        "FREQ",
+        "NUME_MODE",
+        "NOM_CAS",
+        "NOEUD_CMP",
+        "ANGLE",
+        "FORMAT_R",
+        "NOM_PARA",
+        "TOUT_PARA",
+    ])?;
+    if occ.text("TOUT_CHAM") == Some("NON") {
+        return Err(occ.err("TOUT_CHAM", "TOUT_CHAM='NON' is not supported yet"));
     }
     let rc = occ.req_concept("RESULTAT")?;
     let name = rc.label();
@@ -85,7 +92,12 @@ fn print_occurrence(occ: &Args, out: &mut String) -> Result<()> {
             let header: String = ks.iter().map(|&k| format!(" {:>13}", all[k])).collect();
             match field {
                 Field::Node { values, .. } => {
-                    let _ = writeln!(out, " {:<10}{header}", "NOEUD");
+                    // IMPR_COOR='OUI': the node coordinates before the values.
+                    let coor = occ.text("IMPR_COOR") == Some("OUI");
+                    let axes = &["COOR_X", "COOR_Y", "COOR_Z"][..mesh.dim.clamp(1, 3)];
+                    let coor_head: String =
+                        if coor { axes.iter().map(|a| format!(" {a:>13}")).collect() } else { String::new() };
+                    let _ = writeln!(out, " {:<10}{coor_head}{header}", "NOEUD");
                     for node in 0..mesh.coords.len() {
                         if restrict_nodes.as_ref().is_some_and(|r| !r.contains(&node)) {
                             continue;
@@ -94,7 +106,12 @@ fn print_occurrence(occ: &Args, out: &mut String) -> Result<()> {
                             continue;
                         }
                         let row: String = ks.iter().map(|&k| format!(" {}", num(values[node * n + k]))).collect();
-                        let _ = writeln!(out, " {:<10}{row}", mesh.node_names[node]);
+                        let xyz: String = if coor {
+                            (0..axes.len()).map(|d| format!(" {}", num(mesh.coords[node][d]))).collect()
+                        } else {
+                            String::new()
+                        };
+                        let _ = writeln!(out, " {:<10}{xyz}{row}", mesh.node_names[node]);
                     }
                 }
                 Field::Elno { cells, .. } | Field::Elga { cells, .. } | Field::Elem { cells, .. } => {

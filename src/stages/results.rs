@@ -28,13 +28,19 @@ fn step_of<'r>(r: &'r ResultData, occ: &Args, name: &str) -> Result<&'r Step> {
         return r.by_order(*n).ok_or_else(|| occ.err("NUME_ORDRE", format!("result {name} has no order number {n}")));
     }
     if let Some(t) = occ.reals("INST").first() {
-        let prec = occ.real("PRECISION").filter(|_| occ.text("CRITERE") == Some("RELATIF")).unwrap_or(1e-6);
-        return r.by_inst(*t, prec).ok_or_else(|| occ.err("INST", format!("result {name} has no step at time {t}")));
+        // PRECISION and CRITERE of TEST_RESU are the check's tolerance, not the time search's.
+        let hits: Vec<&Step> =
+            r.steps.iter().filter(|s| (s.inst - t).abs() <= 1e-6 * t.abs().max(1e-300) || s.inst == *t).collect();
+        return match hits.as_slice() {
+            [one] => Ok(one),
+            [] => Err(occ.err("INST", format!("result {name} has no step at time {t}"))),
+            _ => Err(occ.err("INST", format!("several steps of result {name} are at time {t}"))),
+        };
     }
     match r.steps.as_slice() {
         [one] => Ok(one),
         [] => Err(occ.err("RESULTAT", format!("result {name} holds no step"))),
-        _ => r.steps.last().ok_or_else(|| occ.err("RESULTAT", "no step")),
+        _ => Err(occ.err("RESULTAT", format!("result {name} holds {} steps: give NUME_ORDRE or INST", r.steps.len()))),
     }
 }
 
@@ -149,8 +155,21 @@ pub fn test_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let mesh = mesh_of_result(&r)?;
         let mesh_name = super::model::model_of(&r.model)?.mesh_concept.label();
         let step = step_of(&r, occ, &name)?;
-        if occ.given("NOM_VARI") || occ.given("PARA") {
-            return Err(occ.err(if occ.given("PARA") { "PARA" } else { "NOM_VARI" }, "not supported yet"));
+        occ.refuse(&["NOM_VARI", "PARA", "FREQ", "NUME_MODE", "NOEUD_CMP", "NOM_CAS", "ANGLE", "SOUS_POINT"])?;
+        for kw in ["NOEUD", "GROUP_NO"] {
+            if occ.vals(kw).len() > 1 {
+                return Err(occ.err(kw, "one node only: the test reads one value"));
+            }
+        }
+        if occ.has("TYPE_TEST") {
+            for kw in ["NOEUD", "GROUP_NO", "MAILLE", "GROUP_MA"] {
+                if occ.given(kw) {
+                    return Err(occ.err(
+                        kw,
+                        "TYPE_TEST over a part of the field is not supported yet (it runs over the whole field)",
+                    ));
+                }
+            }
         }
         let cham = occ.req_text("NOM_CHAM")?;
         let field = step.fields.get(cham).ok_or_else(|| {
@@ -166,6 +185,9 @@ pub fn test_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let (value, where_) = match occ.text("TYPE_TEST") {
             Some(tt) => {
                 let vals = field.all_values(k);
+                if vals.is_empty() {
+                    return Err(occ.err("TYPE_TEST", format!("field {cham} has no value of {cmp}")));
+                }
                 let v = match tt {
                     "MAX" => vals.iter().cloned().fold(f64::MIN, f64::max),
                     "MIN" => vals.iter().cloned().fold(f64::MAX, f64::min),
@@ -254,7 +276,7 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         if ops.iter().any(|o| o != "EXTRACTION") {
             return Err(occ.err("OPERATION", format!("OPERATION='{}' is not supported yet", ops.join("', '"))));
         }
-        for kw in [
+        occ.refuse(&[
             "CHAM_GD",
             "INVARIANT",
             "ELEM_PRINCIPAUX",
@@ -264,10 +286,18 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             "REPERE",
             "LIST_ORDRE",
             "LIST_INST",
-        ] {
-            if occ.given(kw) {
-                return Err(occ.err(kw, "not supported yet"));
-            }
+            "FREQ",
+            "NUME_MODE",
+            "LIST_FREQ",
+            "LIST_MODE",
+            "NOEUD_CMP",
+            "NOM_CAS",
+            "TRAC_NOR",
+            "TRAC_DIR",
+            "DIRECTION",
+        ])?;
+        if occ.text("CRITERE") == Some("ABSOLU") {
+            return Err(occ.err("CRITERE", "CRITERE='ABSOLU' for the time search is not supported yet"));
         }
         let intitule = occ.req_text("INTITULE")?.to_string();
         let rc = occ.req_concept("RESULTAT")?;

@@ -309,6 +309,9 @@ pub(super) fn assemble(a: &Args, p: &Problem, model: &ConceptRef, inst: f64) -> 
                     forces.push((vec![dof], vec![mult * load_value(value, &mesh.coords[*node], inst)?]));
                 }
                 LoadItem::SurfaceForce { cells, components } => {
+                    if dim < 3 && components.iter().any(|(n, _)| n == "FZ") {
+                        return Err(a.err("EXCIT", format!("load {}: FZ in a {} model", lc.label(), md.name())));
+                    }
                     for &c in cells {
                         let dofs = skin_dofs(c)?;
                         let xs = coords_of(mesh, c);
@@ -354,6 +357,16 @@ pub(super) fn assemble(a: &Args, p: &Problem, model: &ConceptRef, inst: f64) -> 
                     };
                     for c in on {
                         let rho = p.materials[c].as_ref().unwrap().1;
+                        if rho == 0.0 {
+                            return Err(a.err(
+                                "EXCIT",
+                                format!(
+                                    "load {}: PESANTEUR on cell {}, whose material gives no RHO",
+                                    lc.label(),
+                                    mesh.cell_names[c]
+                                ),
+                            ));
+                        }
                         let xs = coords_of(mesh, c);
                         let acc = [
                             rho * g * direction[0] * mult,
@@ -465,11 +478,8 @@ pub(super) fn step_fields(p: &Problem, u: &[f64], with_sief: bool) -> Result<BTr
 }
 
 pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    for kw in ["CARA_ELEM", "LIST_INST", "SENSIBILITE"] {
-        if a.given(kw) {
-            return Err(a.err(kw, "not supported yet"));
-        }
-    }
+    // RESULTAT (adding a step to a result) and INST_FIN are not implemented.
+    a.refuse(&["CARA_ELEM", "LIST_INST", "SENSIBILITE", "RESULTAT", "INST_FIN"])?;
     if let Some(o) = a.text("OPTION") {
         if o != "SIEF_ELGA" && o != "SANS" {
             return Err(a.err("OPTION", format!("OPTION='{o}' is not supported yet")));
@@ -636,6 +646,21 @@ pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         None
     };
     let only = |c: &usize| restrict.as_ref().map(|r| r.contains(c)).unwrap_or(true);
+    // The result's own model and material are used; other step selections are not implemented.
+    a.refuse(&[
+        "MODELE",
+        "CHAM_MATER",
+        "INST",
+        "LIST_INST",
+        "LIST_ORDRE",
+        "FREQ",
+        "LIST_FREQ",
+        "NUME_MODE",
+        "NOM_CAS",
+        "NOEUD_CMP",
+        "CARA_ELEM",
+        "EXCIT",
+    ])?;
     let orders = a.ints("NUME_ORDRE");
     for step in steps.iter_mut() {
         if !orders.is_empty() && !orders.contains(&step.nume_ordre) {
