@@ -173,5 +173,9 @@ fn python_errors_are_located() {
     assert!(err("def f(x):\n    return f(x)\nf(1)\n").contains("RecursionError"));
     assert!(err("from os import path\n").contains("module 'os' is not supported"));
     assert!(err("a, b = (1, 2, 3)\n").contains("cannot unpack 3 values into 2 targets"));
+    assert!(err("x = 10.0 ** 400\n").contains("OverflowError"));
+    assert!(err("import math\nx = math.exp(1000)\n").contains("OverflowError"));
+    assert!(err("x = int(1e19)\n").contains("OverflowError"));
+    assert!(err("x = (-2**63) // -1\n").contains("OverflowError"));
     assert!(err("s = '{} {0}'.format(1)\n").contains("cannot switch between automatic and manual field numbering"));
 }

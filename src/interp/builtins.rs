@@ -406,7 +406,14 @@ pub fn parse_float_text(s: &str) -> Option<f64> {
 pub fn call_builtin(it: &mut Interp, name: &'static str, args: Vec<Value>, kw: Vec<(String, Value)>) -> Result<Value> {
     if let Some(m) = name.strip_prefix("math.") {
         no_kw(name, &kw)?;
-        return call_math(m, &args);
+        let v = call_math(m, &args)?;
+        // As CPython: a finite input giving an infinite result overflows.
+        if matches!(v, Value::Float(f) if f.is_infinite())
+            && args.iter().all(|a| a.as_f64().map(f64::is_finite).unwrap_or(true))
+        {
+            return Err(Error::python("OverflowError: math range error"));
+        }
+        return Ok(v);
     }
     match name {
         "_F" => {

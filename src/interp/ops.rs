@@ -78,7 +78,18 @@ pub fn binop(op: BinOp, a: &Value, b: &Value) -> Result<Value> {
     }
     // Floats.
     if let (Some(x), Some(y)) = (num(a), num(b)) {
-        return Ok(Float(match op {
+        let r = float_binop(op, x, y)?;
+        if r.is_infinite() && x.is_finite() && y.is_finite() {
+            return Err(Error::python("OverflowError: numerical result out of range"));
+        }
+        return Ok(Float(r));
+    }
+    complex_or_sequence(op, a, b)
+}
+
+fn float_binop(op: BinOp, x: f64, y: f64) -> Result<f64> {
+    {
+        return Ok(match op {
             BinOp::Add => x + y,
             BinOp::Sub => x - y,
             BinOp::Mul => x * y,
@@ -119,8 +130,12 @@ pub fn binop(op: BinOp, a: &Value, b: &Value) -> Result<Value> {
                 }
                 x.powf(y)
             }
-        }));
+        });
     }
+}
+
+fn complex_or_sequence(op: BinOp, a: &Value, b: &Value) -> Result<Value> {
+    use Value::*;
     // Complex numbers.
     if let (Some((ar, ai)), Some((br, bi))) = (cplx(a), cplx(b)) {
         return match op {

@@ -366,6 +366,9 @@ fn crea_group_no(w: &mut Work, occ: &Args) -> Result<()> {
         }
         out
     } else if let Some(g) = occ.texts("GROUP_NO").first() {
+        if occ.vals("GROUP_NO").len() > 1 {
+            return Err(occ.err("GROUP_NO", "several groups here are not supported yet (use UNION)"));
+        }
         let members = w.node_group(occ, "GROUP_NO", g)?.clone();
         sub_range(occ, &members)?
     } else {

@@ -426,8 +426,8 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         };
         t.add_column(n, ty, cells)?;
     }
-    if let Some(title) = a.text("TITRE") {
-        t.title = title.to_string();
+    if a.has("TITRE") {
+        t.title = a.texts("TITRE").join("\n");
     }
     Ok(Some(ConceptData::Table(t)))
 }

@@ -230,8 +230,8 @@ pub fn crea_table(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         };
         t.add_column(para, ty, cells).map_err(|e| occ.err("PARA", e.msg))?;
     }
-    if let Some(title) = a.text("TITRE") {
-        t.title = title.to_string();
+    if a.has("TITRE") {
+        t.title = a.texts("TITRE").join("\n");
     }
     Ok(Some(ConceptData::Table(t)))
 }
@@ -266,8 +266,8 @@ pub fn lire_table(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             }
         }
     }
-    if let Some(title) = a.text("TITRE") {
-        t.title = title.to_string();
+    if a.has("TITRE") {
+        t.title = a.texts("TITRE").join("\n");
     }
     Ok(Some(ConceptData::Table(t)))
 }
@@ -601,8 +601,8 @@ pub fn calc_table(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             other => return Err(occ.err("OPERATION", format!("operation '{other}' is not supported yet"))),
         };
     }
-    if let Some(title) = a.text("TITRE") {
-        t.title = title.to_string();
+    if a.has("TITRE") {
+        t.title = a.texts("TITRE").join("\n");
     }
     Ok(Some(ConceptData::Table(t)))
 }
@@ -645,8 +645,8 @@ pub fn impr_table(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     if let Some(tri) = a.fact("TRI") {
         t = sort_table(&t, &tri.texts("NOM_PARA"), tri.text("ORDRE") == Some("DECROISSANT"), tri, &name)?;
     }
-    if let Some(title) = a.text("TITRE") {
-        t.title = title.to_string();
+    if a.has("TITRE") {
+        t.title = a.texts("TITRE").join("\n");
     }
     let params = a.texts("NOM_PARA");
     let format = a.text("FORMAT").unwrap_or("TABLEAU");
