@@ -89,7 +89,7 @@ pub fn binop(op: BinOp, a: &Value, b: &Value) -> Result<Value> {
 
 fn float_binop(op: BinOp, x: f64, y: f64) -> Result<f64> {
     {
-        return Ok(match op {
+        Ok(match op {
             BinOp::Add => x + y,
             BinOp::Sub => x - y,
             BinOp::Mul => x * y,
@@ -130,7 +130,7 @@ fn float_binop(op: BinOp, x: f64, y: f64) -> Result<f64> {
                 }
                 x.powf(y)
             }
-        });
+        })
     }
 }
 
