@@ -54,7 +54,7 @@ fn pairs(a: &Args, kw: &str) -> Result<(Vec<f64>, Vec<f64>)> {
     Ok((v.iter().step_by(2).copied().collect(), v.iter().skip(1).step_by(2).copied().collect()))
 }
 
-fn list_of(c: &ConceptRef) -> Result<Vec<f64>> {
+pub(super) fn list_of(c: &ConceptRef) -> Result<Vec<f64>> {
     match &*c.data() {
         ConceptData::ListReal(v) => Ok(v.clone()),
         ConceptData::ListInt(v) => Ok(v.iter().map(|i| *i as f64).collect()),

@@ -715,13 +715,7 @@ fn concept_name(c: &ConceptRef, fallback: &str) -> String {
 
 /// The values of a LIST_ORDRE / LIST_INST concept.
 fn list_of(occ: &Args, kw: &str) -> Result<Option<Vec<f64>>> {
-    let Some(c) = occ.concept(kw) else { return Ok(None) };
-    let v = match &*c.data() {
-        ConceptData::ListReal(v) => v.clone(),
-        ConceptData::ListInt(v) => v.iter().map(|&i| i as f64).collect(),
-        _ => return Err(occ.err(kw, format!("{} ({}) is not a list", c.label(), c.kind()))),
-    };
-    Ok(Some(v))
+    occ.concept(kw).map(|c| super::functions::list_of(&c).map_err(|e| occ.err(kw, e.msg))).transpose()
 }
 
 /// The steps an occurrence selects (TOUT_ORDRE, NUME_ORDRE, LIST_ORDRE,

@@ -15,16 +15,6 @@ use crate::mesh::Mesh;
 use std::collections::{BTreeMap, HashMap};
 use std::rc::Rc;
 
-/// Fail loudly on keywords the stage does not implement.
-fn refuse(a: &Args, names: &[&str]) -> Result<()> {
-    for n in names {
-        if a.given(n) {
-            return Err(a.err(n, "not supported yet"));
-        }
-    }
-    Ok(())
-}
-
 /// Cells selected by TOUT / GROUP_MA / MAILLE (and SANS_GROUP_MA) of an occurrence.
 pub fn select_cells(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
     let mut cells: Vec<usize> = Vec::new();
@@ -108,7 +98,7 @@ pub fn model_of(c: &ConceptRef) -> Result<std::cell::Ref<'_, Model>> {
 // ------------------------------------------------------------------ AFFE_MODELE
 
 pub fn affe_modele(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    refuse(a, &["AFFE_SOUS_STRUC", "GRANDEUR_CARA"])?;
+    a.refuse(&["AFFE_SOUS_STRUC", "GRANDEUR_CARA"])?;
     let mc = a.req_concept("MAILLAGE")?;
     let mesh = mesh_of(&mc)?;
     let name = mc.label();
@@ -157,7 +147,7 @@ pub fn affe_modele(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 // ------------------------------------------------------------------ DEFI_MATERIAU
 
 pub fn defi_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    refuse(a, &["MATER", "TABLE"])?;
+    a.refuse(&["MATER", "TABLE"])?;
     let mut m = Material::default();
     for item in &a.items {
         match &item.value {
@@ -189,7 +179,7 @@ pub fn defi_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 // ------------------------------------------------------------------ AFFE_MATERIAU
 
 pub fn affe_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    refuse(a, &["AFFE_VARC"])?;
+    a.refuse(&["AFFE_VARC"])?;
     let (mesh, name) = match (a.concept("MAILLAGE"), a.concept("MODELE")) {
         (Some(mc), _) => (mesh_of(&mc)?, mc.label()),
         (None, Some(mo)) => {

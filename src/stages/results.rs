@@ -188,12 +188,7 @@ pub fn test_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 if vals.is_empty() {
                     return Err(occ.err("TYPE_TEST", format!("field {cham} has no value of {cmp}")));
                 }
-                let v = match tt {
-                    "MAX" => vals.iter().cloned().fold(f64::MIN, f64::max),
-                    "MIN" => vals.iter().cloned().fold(f64::MAX, f64::min),
-                    "SOMM" => vals.iter().sum(),
-                    _ => vals.iter().map(|x| x.abs()).sum(),
-                };
+                let v = super::verdict::type_test(tt, &vals);
                 (v, format!("TYPE_TEST {tt}"))
             }
             None => {
@@ -236,12 +231,7 @@ fn test_field(ctx: &mut Ctx, occ: &Args, kw: &str) -> Result<()> {
                 None => (0..field.components().len()).collect(),
             };
             let vals: Vec<f64> = ks.iter().flat_map(|&k| field.all_values(k)).collect();
-            let v = match tt {
-                "MAX" => vals.iter().cloned().fold(f64::MIN, f64::max),
-                "MIN" => vals.iter().cloned().fold(f64::MAX, f64::min),
-                "SOMM" => vals.iter().sum(),
-                _ => vals.iter().map(|x| x.abs()).sum(),
-            };
+            let v = super::verdict::type_test(tt, &vals);
             (v, cmp.unwrap_or(tt).to_string(), format!("TYPE_TEST {tt}"))
         }
         (None, Some(cmp)) => {

@@ -39,12 +39,7 @@ pub fn test_table(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                     a.err("TYPE_TEST", format!("no numeric value of '{para}' in the selected rows of table {name}"))
                 );
             }
-            let v = match tt {
-                "MAX" => nums.iter().cloned().fold(f64::MIN, f64::max),
-                "MIN" => nums.iter().cloned().fold(f64::MAX, f64::min),
-                "SOMM" => nums.iter().sum(),
-                _ => nums.iter().map(|x| x.abs()).sum(),
-            };
+            let v = super::verdict::type_test(tt, &nums);
             let all_int = cells.iter().all(|c| matches!(c, Cell::Int(_)));
             if all_int && a.has("VALE_CALC_I") {
                 Scalar::I(v as i64)

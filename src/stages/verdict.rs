@@ -240,6 +240,16 @@ pub fn check(ctx: &mut Ctx, occ: &Args, val: Scalar, legend: &str, title: &str) 
     Ok(())
 }
 
+/// TYPE_TEST: the MAX, MIN, SOMM or SOMM_ABS of values (callers check they are not empty).
+pub fn type_test(tt: &str, vals: &[f64]) -> f64 {
+    match tt {
+        "MAX" => vals.iter().cloned().fold(f64::MIN, f64::max),
+        "MIN" => vals.iter().cloned().fold(f64::MAX, f64::min),
+        "SOMM" => vals.iter().sum(),
+        _ => vals.iter().map(|x| x.abs()).sum(),
+    }
+}
+
 /// A check of a text attribute against its expected value.
 pub fn check_text(ctx: &mut Ctx, reference: &str, legend: &str, expected: &str, actual: &str, title: &str) {
     let l = compare(reference, legend, &[Scalar::K(expected.into())], &Scalar::K(actual.into()), true, 0.0, None);

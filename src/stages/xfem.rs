@@ -11,18 +11,8 @@ use crate::diag::{Error, Result};
 use crate::xfem::{build_interface, crack_of, Crack};
 use std::fmt::Write as _;
 
-/// Fail loudly on keywords the stage does not implement.
-fn refuse(a: &Args, names: &[&str]) -> Result<()> {
-    for n in names {
-        if a.given(n) {
-            return Err(a.err(n, "not supported yet"));
-        }
-    }
-    Ok(())
-}
-
 pub fn defi_fiss_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    refuse(a, &["MAILLAGE_GRILLE", "FISS_GRILLE", "TYPE_ENRI_FOND", "RAYON_ENRI", "NB_COUCHES"])?;
+    a.refuse(&["MAILLAGE_GRILLE", "FISS_GRILLE", "TYPE_ENRI_FOND", "RAYON_ENRI", "NB_COUCHES"])?;
     let typdis = a.req_text("TYPE_DISCONTINUITE")?;
     if typdis != "INTERFACE" {
         return Err(a.err("TYPE_DISCONTINUITE", format!("TYPE_DISCONTINUITE='{typdis}' is not supported yet")));
