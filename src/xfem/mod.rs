@@ -6,7 +6,11 @@
 //! (`MAILFISS.HEAV`). The computations live in [`levelset`]; the region
 //! codes of nodes over a list of cracks (`xlsjon`, `xcalc_code`) are here.
 
+pub mod czm;
 pub mod levelset;
+pub mod mortar;
+pub mod postmail;
+pub mod topose;
 
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};

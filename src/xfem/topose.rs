@@ -1,0 +1,1201 @@
+//! Sub-element cutting of an X-FEM parent cell by its interfaces, as
+//! Code_Aster's TOPOSE option (`te0514`) does it: primary split into
+//! quadratic simplices (`xdivte`, centre nodes `ndcent`), then, crack after
+//! crack, each current simplex is cut (`xdecqu`, mid-points `xalgo2` /
+//! `xalg30` / `xalg40`, children `xdecqv`), with the junction skip and the
+//! Heaviside sign of every child. The split, the order and the numbering are
+//! Code_Aster's, because POST_MAIL_XFEM's node names depend on them.
+//!
+//! Point ids follow Code_Aster's final connectivity (`PCNSETO`):
+//! 1..=nno the parent's nodes (Code_Aster local order), 1000+k intersection
+//! points, 2000+k mid-points, 3000+k centre nodes still in use (as in
+//! `te0514`, k continues the mid-point count: the first centre node in use
+//! of a parent with 13 mid-points is 3014).
+//!
+//! Only what straight interfaces in affine cells need is reproduced: every
+//! Newton solve of Code_Aster (xinter, xmifis, xcenfi) starts on the
+//! interface there, so a start point off it, a curved interface, a failed
+//! primary split (the 107 rotated HEXA20 patterns) and the degenerate 3D
+//! cuttings with intersection points on sub-tetrahedron vertices
+//! (xdblsn, xalg31/41/42) are reported as errors. Vertex points are handled
+//! in 2D.
+
+use crate::mesh::CellType;
+
+/// One crack as a parent cell sees it.
+#[derive(Debug, Clone)]
+pub struct CrackInCell {
+    /// Normal level set at the parent's nodes (Code_Aster local order).
+    pub lsn: Vec<f64>,
+    /// For a branch: (index of its master in this cell's crack list, coef);
+    /// the branch exists where coef·φ_master < 0 (`FISSCO`).
+    pub master: Option<(usize, f64)>,
+}
+
+/// A point of the cutting.
+#[derive(Debug, Clone)]
+pub struct CutPoint {
+    /// Code_Aster's id (see the module docs).
+    pub id: u32,
+    /// Reference coordinates in the parent cell.
+    pub xi: [f64; 3],
+    /// Real coordinates.
+    pub x: [f64; 3],
+    /// Normal level set of each crack of the cell at this point (nodal value
+    /// at parent nodes, parent interpolation elsewhere).
+    pub lsn: Vec<f64>,
+}
+
+/// A sub-cell: a quadratic simplex (TRIA6 / TETRA10, Code_Aster local order).
+#[derive(Debug, Clone)]
+pub struct SubCell {
+    /// Indices into [`Cutting::points`].
+    pub nodes: Vec<usize>,
+    /// Heaviside value per crack of the cell: −1, +1, or 0 where a branch does not exist.
+    pub he: Vec<i32>,
+}
+
+/// The cutting of one parent cell (`TOPOSE`): points and sub-cells in
+/// Code_Aster's storage order.
+#[derive(Debug, Clone, Default)]
+pub struct Cutting {
+    pub points: Vec<CutPoint>,
+    pub subcells: Vec<SubCell>,
+}
+
+impl Cutting {
+    /// The simplex type of the sub-cells.
+    pub fn subcell_type(dim: usize) -> CellType {
+        if dim == 2 {
+            CellType::Tria6
+        } else {
+            CellType::Tetra10
+        }
+    }
+}
+
+use crate::fem::reference::{map_to_real, node_coords, shape};
+
+/// Coincidence tolerance of Code_Aster's point lists (`cridist`), relative
+/// to a length.
+const CRIDIST: f64 = 1e-9;
+
+/// Edges of the sub-simplices (`conare`): end A, end B, mid-node (1-based
+/// local numbers).
+const TRIA6_EDGES: [[usize; 3]; 3] = [[1, 2, 4], [2, 3, 5], [3, 1, 6]];
+const TETRA10_EDGES: [[usize; 3]; 6] = [[1, 2, 5], [1, 3, 7], [1, 4, 8], [2, 3, 6], [2, 4, 9], [3, 4, 10]];
+
+/// Primary split of a QUAD8 (`xdivte`, first configuration): node 9 is the
+/// centre.
+const QUAD8_SPLIT: [[u32; 6]; 2] = [[1, 2, 4, 5, 9, 8], [2, 3, 4, 6, 7, 9]];
+
+/// Primary split of a HEXA20 into six TETRA10 (`xdivte`, first
+/// configuration); 21..26 are the face centres (z−, y−, x+, y+, x−, z+) and
+/// 27 the body centre.
+const HEXA20_SPLIT: [[u32; 10]; 6] = [
+    [6, 3, 2, 4, 23, 10, 14, 27, 11, 21],
+    [4, 5, 1, 2, 25, 13, 12, 21, 22, 9],
+    [2, 5, 6, 4, 22, 17, 14, 21, 25, 27],
+    [5, 4, 8, 6, 25, 16, 20, 17, 27, 26],
+    [3, 6, 7, 8, 23, 18, 15, 24, 26, 19],
+    [3, 8, 4, 6, 24, 16, 11, 23, 26, 27],
+];
+
+/// A point: reference coordinates in the parent and real coordinates.
+#[derive(Debug, Clone, Copy)]
+struct Pt {
+    xi: [f64; 3],
+    x: [f64; 3],
+}
+
+/// An intersection point of the current sub-simplex (`pinter`/`ainter`).
+#[derive(Debug, Clone, Copy)]
+struct Inter {
+    p: Pt,
+    /// 1-based local edge, 0 when the point is a vertex of the sub-simplex.
+    edge: usize,
+    /// Id of the vertex when `edge == 0`.
+    node: u32,
+}
+
+fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn mid(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0, (a[2] + b[2]) / 2.0]
+}
+
+fn sub3(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// Normalised copy (`xnormv`: a zero vector stays zero).
+fn unit(a: &[f64; 3]) -> [f64; 3] {
+    let n = dot(a, a).sqrt();
+    if n > 0.0 {
+        [a[0] / n, a[1] / n, a[2] / n]
+    } else {
+        *a
+    }
+}
+
+/// The parent cell and the state of its cutting.
+struct Ctx<'a> {
+    t: CellType,
+    /// Dimension of the parent (2 or 3).
+    dim: usize,
+    nno: usize,
+    coords: &'a [[f64; 3]],
+    /// lsn[crack][node].
+    lsn: Vec<&'a [f64]>,
+    /// Centre nodes (`ndcent`): ids nno+1..nno+nnc.
+    centre: Vec<Pt>,
+    /// centre_lsn[centre][crack], parent interpolation.
+    centre_lsn: Vec<Vec<f64>>,
+    /// Intersection points of the parent (`PINTTO`), ids 1001...
+    pint: Vec<Pt>,
+    /// Mid-points of the parent (`PMILTO`), ids 2001...
+    pmil: Vec<Pt>,
+    /// Characteristic length of the parent (`loncar`).
+    lonref: f64,
+}
+
+impl Ctx<'_> {
+    fn interp(&self, xi: &[f64; 3], crack: usize) -> f64 {
+        shape(self.t, xi).iter().zip(self.lsn[crack]).map(|(n, v)| n * v).sum()
+    }
+
+    fn to_real(&self, xi: [f64; 3]) -> Pt {
+        Pt { xi, x: map_to_real(self.t, self.coords, &xi) }
+    }
+
+    fn is_centre(&self, id: u32) -> bool {
+        (id as usize) > self.nno && id < 100
+    }
+
+    /// A point known to the parent (node, centre node, archived intersection
+    /// or mid-point) or to the current sub-simplex (101.., 201..).
+    fn pt(&self, id: u32, inter: &[Inter], mil: &[Pt]) -> Result<Pt, String> {
+        let i = id as usize;
+        let p = if id == 0 {
+            None
+        } else if i <= self.nno {
+            Some(Pt { xi: node_coords(self.t)[i - 1], x: self.coords[i - 1] })
+        } else if id < 100 {
+            self.centre.get(i - self.nno - 1).copied()
+        } else if id < 200 {
+            inter.get(i - 101).map(|p| p.p)
+        } else if id < 1000 {
+            mil.get(i - 201).copied()
+        } else if id < 2000 {
+            self.pint.get(i - 1001).copied()
+        } else if id < 3000 {
+            self.pmil.get(i - 2001).copied()
+        } else {
+            None
+        };
+        p.ok_or_else(|| format!("TOPOSE: internal error, point id {id} is unknown"))
+    }
+
+    /// Level set of a node of a sub-simplex as `xdecqu` reads it: nodal value
+    /// at parent nodes, the centre value at centre nodes, the parent
+    /// interpolation at generated points.
+    fn node_lsn(&self, id: u32, crack: usize, inter: &[Inter], mil: &[Pt]) -> Result<f64, String> {
+        let i = id as usize;
+        Ok(if i <= self.nno {
+            self.lsn[crack][i - 1]
+        } else if self.is_centre(id) {
+            self.centre_lsn[i - self.nno - 1][crack]
+        } else {
+            self.interp(&self.pt(id, inter, mil)?.xi, crack)
+        })
+    }
+}
+
+/// `loncar` for the parent and sub-simplex types used here.
+fn loncar(t: CellType, x: &[[f64; 3]]) -> f64 {
+    match t {
+        CellType::Hexa20 => dist(&x[0], &x[6]),
+        CellType::Quad8 | CellType::Tria6 => (dist(&x[0], &x[1]) * dist(&x[0], &x[2])).sqrt(),
+        _ => (dist(&x[0], &x[1]) * dist(&x[0], &x[2]) * dist(&x[0], &x[3])).cbrt(),
+    }
+}
+
+/// The masters a crack branches on, transitively (`fisc`): (crack, coef).
+fn master_chain(cracks: &[CrackInCell], ifiss: usize) -> Result<Vec<(usize, f64)>, String> {
+    let mut chain = Vec::new();
+    let mut k = ifiss;
+    while let Some((m, c)) = cracks[k].master {
+        if m >= cracks.len() || chain.len() > cracks.len() {
+            return Err(format!("TOPOSE: invalid junction table for crack {} of the cell", ifiss + 1));
+        }
+        chain.push((m, c));
+        k = m;
+    }
+    Ok(chain)
+}
+
+/// What `xdecqu` finds on one sub-simplex.
+struct Decoupe {
+    cut: bool,
+    inter: Vec<Inter>,
+    npts: usize,
+    mil: Vec<Pt>,
+}
+
+/// Add an intersection point unless one is closer than `longar`·cridist
+/// (`xajpin`); true when added.
+fn add_inter(list: &mut Vec<Inter>, p: Inter, longar: f64) -> bool {
+    if list.iter().any(|q| dist(&q.p.x, &p.p.x) < longar * CRIDIST) {
+        return false;
+    }
+    list.push(p);
+    true
+}
+
+/// Add a mid-point unless one is closer than `lonref`·cridist (`xajpmi`).
+fn add_mid(list: &mut Vec<Pt>, p: Pt, lonref: f64) {
+    if !list.iter().any(|q| dist(&q.x, &p.x) < lonref * CRIDIST) {
+        list.push(p);
+    }
+}
+
+impl Ctx<'_> {
+    /// Intersection points and mid-points of sub-simplex `sub` with crack
+    /// `ifiss` (`xdecqu`, then `xalgo2` / `xalg30` / `xalg40`).
+    fn decqu(&self, sub: &[u32], ifiss: usize, fisc: &[(usize, f64)]) -> Result<Decoupe, String> {
+        let nnose = sub.len();
+        let edges: &[[usize; 3]] = if self.dim == 2 { &TRIA6_EDGES } else { &TETRA10_EDGES };
+        let none = Decoupe { cut: false, inter: Vec::new(), npts: 0, mil: Vec::new() };
+        let mut tabls = vec![0.0; nnose];
+        let mut som = vec![0.0; fisc.len()];
+        for (j, &id) in sub.iter().enumerate() {
+            let v = self.node_lsn(id, ifiss, &[], &[])?;
+            for (s, &(m, _)) in som.iter_mut().zip(fisc) {
+                *s += self.node_lsn(id, m, &[], &[])?;
+            }
+            tabls[j] = if v.abs() <= 1e-8 { 0.0 } else { v };
+        }
+        // Junction: the branch does not exist on this side of its master.
+        if fisc.iter().zip(&som).any(|(&(_, c), s)| c * s > 0.0) {
+            return Ok(none);
+        }
+        // A crack entering along an edge puts the mid-node on it.
+        for e in edges {
+            let (la, lb, lm) = (tabls[e[0] - 1], tabls[e[1] - 1], tabls[e[2] - 1]);
+            let entering_a = la == 0.0 && (lb == 0.0 || lb * lm < 0.0);
+            if entering_a || (lb == 0.0 && la * lm < 0.0) {
+                tabls[e[2] - 1] = 0.0;
+            }
+        }
+        let cut = edges.iter().any(|e| tabls[e[0] - 1] * tabls[e[1] - 1] < 0.0);
+        if !cut {
+            // Only vertex-type points can be found: nothing is archived.
+            return Ok(none);
+        }
+        let mut inter: Vec<Inter> = Vec::new();
+        let (mut npts, mut nptm) = (0, 0);
+        for (ie, e) in edges.iter().enumerate() {
+            let (na, nb, nm) = (sub[e[0] - 1], sub[e[1] - 1], sub[e[2] - 1]);
+            let (la, lb, lm) = (tabls[e[0] - 1], tabls[e[1] - 1], tabls[e[2] - 1]);
+            if la * lb > 0.0 {
+                continue;
+            }
+            let a = self.pt(na, &[], &[])?;
+            let b = self.pt(nb, &[], &[])?;
+            let longar = dist(&a.x, &b.x);
+            if la == 0.0 && add_inter(&mut inter, Inter { p: a, edge: 0, node: na }, longar) {
+                npts += 1;
+            }
+            if lb == 0.0 && add_inter(&mut inter, Inter { p: b, edge: 0, node: nb }, longar) {
+                npts += 1;
+            }
+            if lm == 0.0 {
+                let m = self.pt(nm, &[], &[])?;
+                if add_inter(&mut inter, Inter { p: m, edge: ie + 1, node: 0 }, longar) {
+                    nptm += 1;
+                }
+            }
+            if la != 0.0 && lb != 0.0 && lm != 0.0 {
+                let c = self.xinter(na, nb, nm, la, lb, lm, ifiss)?;
+                add_inter(&mut inter, Inter { p: c, edge: ie + 1, node: 0 }, longar);
+            }
+        }
+        // Selection sort by edge number.
+        let n = inter.len();
+        for pd in 0..n.saturating_sub(1) {
+            let mut pp = pd;
+            for i in pd..n {
+                if inter[i].edge < inter[pp].edge {
+                    pp = i;
+                }
+            }
+            inter.swap(pp, pd);
+        }
+        if self.dim == 3 && npts > 0 {
+            return Err(format!(
+                "TOPOSE: a TETRA10 sub-element has {npts} intersection point(s) on its vertices \
+                 ({n} in all, {nptm} on mid-nodes): the degenerate 3D cuttings (xdblsn, npts > 0 in xdecqu / \
+                 xalg31 / xalg41 / xalg42) are not supported"
+            ));
+        }
+        if n == 4 && npts == 0 {
+            // Point 4 must be the one whose edge shares no vertex with point 1's.
+            let a1 = inter[0].edge;
+            for ia in 1..3 {
+                let a2 = inter[ia].edge;
+                let shared = (0..2).any(|i| (0..2).any(|j| edges[a1 - 1][i] == edges[a2 - 1][j]));
+                if !shared {
+                    inter.swap(ia, 3);
+                }
+            }
+        }
+        // Configurations Code_Aster refuses (xerfis, first crack only).
+        if ifiss == 0 {
+            let bad = if self.dim == 2 {
+                n <= 1
+                    || n > 3
+                    || npts > n
+                    || (n == 2 && npts == 2)
+                    || (n == 3 && npts == 0)
+                    || (n == 3 && npts == 1 && nptm != 1)
+                    || (n == 3 && npts >= 2)
+            } else {
+                n == 3 && npts == 2
+            };
+            if bad {
+                return Err(format!(
+                    "TOPOSE: forbidden cutting configuration (XFEM_64): {n} intersection points, {npts} on \
+                     vertices, {nptm} on mid-nodes"
+                ));
+            }
+        }
+        let vertices: Vec<[f64; 3]> =
+            sub.iter().map(|&id| self.pt(id, &[], &[]).map(|p| p.x)).collect::<Result<_, _>>()?;
+        let lonref_sub = loncar(if self.dim == 2 { CellType::Tria6 } else { CellType::Tetra10 }, &vertices);
+        let mil = if self.dim == 2 {
+            self.algo2(sub, &inter, npts, lonref_sub, ifiss)?
+        } else if n == 3 {
+            self.alg30(sub, &inter, lonref_sub, ifiss)?
+        } else if n == 4 {
+            self.alg40(sub, &inter, lonref_sub, ifiss)?
+        } else {
+            return Err(format!("TOPOSE: unexpected 3D cutting with {n} intersection points"));
+        };
+        Ok(Decoupe { cut, inter, npts, mil })
+    }
+
+    /// Crossing point of crack `ifiss` on a quadratic sub-edge (`xinter`).
+    #[allow(clippy::too_many_arguments)]
+    fn xinter(&self, na: u32, nb: u32, nm: u32, la: f64, lb: f64, lm: f64, ifiss: usize) -> Result<Pt, String> {
+        let pa = self.pt(na, &[], &[])?.xi;
+        let pb = self.pt(nb, &[], &[])?.xi;
+        let pm = self.pt(nm, &[], &[])?.xi;
+        let a = (la + lb - 2.0 * lm) / 2.0;
+        if (la - lb).abs() <= 0.0 {
+            return Err("TOPOSE: equal level sets at the ends of a cut edge".into());
+        }
+        if a.abs() >= 1e-8 {
+            return Err(format!(
+                "TOPOSE: the level set is not linear along a sub-edge (quadratic coefficient {a:.3e}): \
+                 the curved-interface branch of xinter (quadratic root + Newton) is not supported"
+            ));
+        }
+        let k = la / (la - lb);
+        let (wa, wm, wb) = (2.0 * (1.0 - k) * (0.5 - k), 4.0 * k * (1.0 - k), 2.0 * k * (k - 0.5));
+        let xi = [0, 1, 2].map(|j| wa * pa[j] + wm * pm[j] + wb * pb[j]);
+        self.check_on_crack(&xi, ifiss, "xinter")?;
+        Ok(self.to_real(xi))
+    }
+
+    /// The Newton solves of Code_Aster (xnewto) start from a point that,
+    /// for a straight interface in an affine cell, already lies on it; a
+    /// start point off the interface means a case that is not reproduced.
+    fn check_on_crack(&self, xi: &[f64; 3], ifiss: usize, what: &str) -> Result<(), String> {
+        let v = self.interp(xi, ifiss);
+        let scale = self.lsn[ifiss].iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-300);
+        if v.abs() > 1e-10 * scale {
+            return Err(format!(
+                "TOPOSE: {what}: the start point is off the interface (level set {v:.3e}): the curved-interface \
+                 Newton solve is not supported"
+            ));
+        }
+        Ok(())
+    }
+
+    /// Type-1 mid-points of intersection point `r` (`xmilar`): between the
+    /// point and end `ia`, then between the point and end `ib`.
+    fn milar(&self, ia: u32, ib: u32, im: u32, pr: &[f64; 3]) -> Result<(Pt, Pt), String> {
+        let pta = self.pt(ia, &[], &[])?.xi;
+        let ptb = self.pt(ib, &[], &[])?.xi;
+        let ptm = self.pt(im, &[], &[])?.xi;
+        let (ka, kb) = if im < 2000 {
+            (mid(pr, &pta), mid(pr, &ptb))
+        } else {
+            let ab = sub3(&ptb, &pta);
+            let aip = sub3(pr, &pta);
+            let s = dot(&aip, &aip).sqrt() / dot(&ab, &ab).sqrt() * dot(&unit(&ab), &unit(&aip));
+            let ka = [0, 1, 2]
+                .map(|j| (1.0 - s) * (1.0 - s / 2.0) * pta[j] + s / 2.0 * (s - 1.0) * ptb[j] + s * (2.0 - s) * ptm[j]);
+            let kb = [0, 1, 2]
+                .map(|j| s / 2.0 * (s - 1.0) * pta[j] + s / 2.0 * (s + 1.0) * ptb[j] + (s + 1.0) * (1.0 - s) * ptm[j]);
+            (ka, kb)
+        };
+        Ok((self.to_real(ka), self.to_real(kb)))
+    }
+
+    /// Type-2 mid-point between two intersection points (`xmifis`).
+    fn mifis(&self, p1: &Pt, p2: &Pt, ifiss: usize) -> Result<Pt, String> {
+        let xi = mid(&p1.xi, &p2.xi);
+        self.check_on_crack(&xi, ifiss, "xmifis")?;
+        Ok(self.to_real(xi))
+    }
+
+    /// Type-3 mid-point (`xmilfa`): between point `ip1` and the far end of
+    /// point `ip2`'s edge; `pm2` is the 1-based index of their type-2
+    /// mid-point in `mil`.
+    fn milfa(
+        &self,
+        sub: &[u32],
+        inter: &[Inter],
+        ip1: usize,
+        ip2: usize,
+        pm2: usize,
+        mil: &[Pt],
+    ) -> Result<Pt, String> {
+        let edges: &[[usize; 3]] = if self.dim == 2 { &TRIA6_EDGES } else { &TETRA10_EDGES };
+        let a1 = inter[ip1 - 1].edge;
+        let a2 = inter[ip2 - 1].edge;
+        let (mut a, mut b, mut d) = (0, 0, 0);
+        for i in 0..2 {
+            for j in 0..2 {
+                if edges[a1 - 1][i] == edges[a2 - 1][j] {
+                    a = edges[a1 - 1][1 - i];
+                    b = edges[a2 - 1][1 - j];
+                }
+            }
+        }
+        for e in edges {
+            for j in 0..2 {
+                if e[j] == a && e[1 - j] == b {
+                    d = e[2];
+                }
+            }
+        }
+        if a * b * d == 0 {
+            return Err("TOPOSE: xmilfa: the two intersection edges share no vertex".into());
+        }
+        let pta = self.pt(sub[a - 1], &[], &[])?.xi;
+        let ptb = self.pt(sub[b - 1], &[], &[])?.xi;
+        let ptd = self.pt(sub[d - 1], &[], &[])?.xi;
+        let q1 = inter[ip1 - 1].p.xi;
+        let q2 = inter[ip2 - 1].p.xi;
+        let pm = mil.get(pm2 - 1).ok_or("TOPOSE: xmilfa: missing mid-point")?.xi;
+        let mut ksi = mid(&q1, &ptb);
+        let t1 = unit(&sub3(&ksi, &q1));
+        let t2 = unit(&[0, 1, 2].map(|i| -1.5 * q1[i] - 0.5 * q2[i] + 2.0 * pm[i]));
+        let t3 = unit(&sub3(&pta, &q1));
+        let cosu = dot(&t1, &t2);
+        // NaN (|cosu| > 1 by round-off) compares false, as in Fortran.
+        let mut sinu = (1.0 - cosu * cosu).sqrt();
+        if dot(&t3, &t2) > dot(&t3, &t1) {
+            sinu = -sinu;
+        }
+        if sinu < 1e-3 {
+            ksi = mid(&pm, &ptd);
+        }
+        for v in ksi.iter_mut().take(self.dim) {
+            if v.abs() > 1.0 + 1e-12 {
+                return Err("TOPOSE: xmilfa: mid-point outside the parent".into());
+            }
+            *v = v.clamp(-1.0, 1.0);
+        }
+        Ok(self.to_real(ksi))
+    }
+
+    /// 2D mid-points (`xalgo2`).
+    fn algo2(&self, sub: &[u32], inter: &[Inter], npts: usize, lonref: f64, ifiss: usize) -> Result<Vec<Pt>, String> {
+        let ed = &TRIA6_EDGES;
+        let n = inter.len();
+        let shared = |a1: usize, a2: usize| -> usize {
+            let mut s = 0;
+            for i in 0..2 {
+                for j in 0..2 {
+                    if ed[a1 - 1][i] == ed[a2 - 1][j] {
+                        s = ed[a1 - 1][i];
+                    }
+                }
+            }
+            s
+        };
+        let noeua = match (n, npts) {
+            (2, 0) => shared(inter[0].edge, inter[1].edge),
+            (3, 1) => shared(inter[1].edge, inter[2].edge),
+            (2, 1) => ed[inter[1].edge - 1][0],
+            _ => 0,
+        };
+        if noeua == 0 {
+            return Err(format!("TOPOSE: xalgo2: unexpected configuration ({n} points, {npts} on vertices)"));
+        }
+        // xstudo: (ip1, ip2, pm2).
+        let pairs: Vec<(usize, usize, usize)> = match (n, npts) {
+            (2, 0) => vec![(1, 2, 5)],
+            (2, 1) => vec![(1, 2, 0)],
+            (3, _) => vec![(2, 3, 5)],
+            _ => vec![],
+        };
+        let mut mil = Vec::new();
+        self.type1(sub, inter, ed, &mut mil, lonref, |e| (0..2).find(|&i| e[i] == noeua).map(|i| (e[1 - i], e[i])))?;
+        for &(i1, i2, _) in &pairs {
+            if inter[i1 - 1].edge != 0 || inter[i2 - 1].edge != 0 {
+                let p = self.mifis(&inter[i1 - 1].p, &inter[i2 - 1].p, ifiss)?;
+                add_mid(&mut mil, p, lonref);
+            }
+        }
+        for &(i1, i2, pm2) in &pairs {
+            if inter[i1 - 1].edge != 0 && inter[i2 - 1].edge != 0 {
+                let p = self.milfa(sub, inter, i1, i2, pm2, &mil)?;
+                add_mid(&mut mil, p, lonref);
+            }
+        }
+        Ok(mil)
+    }
+
+    /// Type-1 mid-points of every non-vertex intersection point: `ends`
+    /// gives, for the point's edge, (end of the first mid-point, end of the
+    /// second) as 1-based local nodes.
+    fn type1(
+        &self,
+        sub: &[u32],
+        inter: &[Inter],
+        ed: &[[usize; 3]],
+        mil: &mut Vec<Pt>,
+        lonref: f64,
+        ends: impl Fn(&[usize; 3]) -> Option<(usize, usize)>,
+    ) -> Result<(), String> {
+        for p in inter {
+            if p.edge == 0 {
+                continue;
+            }
+            let e = &ed[p.edge - 1];
+            let (ia, ib) = ends(e).ok_or("TOPOSE: mid-points: the reference vertex is not on the edge")?;
+            let (ma, mb) = self.milar(sub[ia - 1], sub[ib - 1], sub[e[2] - 1], &p.p.xi)?;
+            add_mid(mil, ma, lonref);
+            add_mid(mil, mb, lonref);
+        }
+        Ok(())
+    }
+
+    /// 3D mid-points, three intersection points (`xalg30`).
+    fn alg30(&self, sub: &[u32], inter: &[Inter], lonref: f64, ifiss: usize) -> Result<Vec<Pt>, String> {
+        let ed = &TETRA10_EDGES;
+        let (a2, a3) = (inter[1].edge, inter[2].edge);
+        let mut noeua = 0;
+        for i in 0..2 {
+            for j in 0..2 {
+                if ed[a2 - 1][i] == ed[a3 - 1][j] {
+                    noeua = ed[a2 - 1][i];
+                }
+            }
+        }
+        if noeua == 0 {
+            return Err("TOPOSE: xalg30: the cut edges share no vertex".into());
+        }
+        let mut mil = Vec::new();
+        self.type1(sub, inter, ed, &mut mil, lonref, |e| (0..2).find(|&i| e[i] == noeua).map(|i| (e[1 - i], e[i])))?;
+        let pairs = [(1, 2, 7), (2, 3, 8), (1, 3, 9)];
+        for &(i1, i2, _) in &pairs {
+            let p = self.mifis(&inter[i1 - 1].p, &inter[i2 - 1].p, ifiss)?;
+            add_mid(&mut mil, p, lonref);
+        }
+        for &(i1, i2, pm2) in &pairs {
+            let p = self.milfa(sub, inter, i1, i2, pm2, &mil)?;
+            add_mid(&mut mil, p, lonref);
+        }
+        if mil.len() != 12 {
+            return Err(format!("TOPOSE: xalg30: {} mid-points instead of 12", mil.len()));
+        }
+        Ok(mil)
+    }
+
+    /// 3D mid-points, four intersection points (`xalg40`).
+    fn alg40(&self, sub: &[u32], inter: &[Inter], lonref: f64, ifiss: usize) -> Result<Vec<Pt>, String> {
+        let ed = &TETRA10_EDGES;
+        let (a1, a2) = (inter[0].edge, inter[1].edge);
+        let (mut nb, mut nc) = (0, 0);
+        for i in 0..2 {
+            for j in 0..2 {
+                if ed[a1 - 1][i] == ed[a2 - 1][j] {
+                    nb = ed[a1 - 1][1 - i];
+                    nc = ed[a2 - 1][1 - j];
+                }
+            }
+        }
+        if nb * nc == 0 {
+            return Err("TOPOSE: xalg40: the first two cut edges share no vertex".into());
+        }
+        let mut mil = Vec::new();
+        self.type1(sub, inter, ed, &mut mil, lonref, |e| {
+            (0..2).find(|&i| e[1 - i] == nb || e[1 - i] == nc).map(|i| (e[1 - i], e[i]))
+        })?;
+        let pairs = [(2, 1, 9), (4, 2, 10), (4, 3, 11), (3, 1, 12)];
+        for &(i1, i2, _) in &pairs {
+            let p = self.mifis(&inter[i1 - 1].p, &inter[i2 - 1].p, ifiss)?;
+            add_mid(&mut mil, p, lonref);
+        }
+        // Centre of the quadrangle of the interface (xcenfi).
+        let pin = |k: usize| inter[k - 1].p.xi;
+        let pmi = |k: usize| mil.get(k - 1).map(|p| p.xi);
+        let mut maxi: f64 = 0.0;
+        for (p1, p2, m) in [(1, 2, 9), (2, 4, 10), (3, 4, 11), (1, 3, 12)] {
+            let pm = pmi(m).ok_or("TOPOSE: xcenfi: missing mid-point")?;
+            let cosi = dot(&unit(&sub3(&pin(p2), &pin(p1))), &unit(&sub3(&pm, &pin(p1))));
+            if cosi < 1.0 {
+                maxi = maxi.max(cosi.acos());
+            }
+        }
+        if maxi > 1e-2 {
+            return Err("TOPOSE: xcenfi: curved interface in a sub-tetrahedron is not supported".into());
+        }
+        let c = mid(&pin(1), &pin(4));
+        self.check_on_crack(&c, ifiss, "xcenfi")?;
+        add_mid(&mut mil, self.to_real(c), lonref);
+        for &(i1, i2, pm2) in &pairs {
+            let p = self.milfa(sub, inter, i1, i2, pm2, &mil)?;
+            add_mid(&mut mil, p, lonref);
+        }
+        if mil.len() != 17 {
+            return Err(format!("TOPOSE: xalg40: {} mid-points instead of 17", mil.len()));
+        }
+        Ok(mil)
+    }
+}
+
+/// Split a quadratic prism (18 nodes: 6 vertices, 9 edge mid-nodes, 3
+/// face mid-nodes) into three TETRA10 (`xpente`, default pattern).
+fn xpente(n: &[u32; 18]) -> [[u32; 10]; 3] {
+    let g = |k: usize| n[k - 1];
+    [
+        [g(1), g(5), g(2), g(6), g(16), g(11), g(7), g(18), g(14), g(17)],
+        [g(4), g(5), g(1), g(6), g(13), g(16), g(10), g(15), g(14), g(18)],
+        [g(1), g(2), g(3), g(6), g(7), g(8), g(9), g(18), g(17), g(12)],
+    ]
+}
+
+impl Ctx<'_> {
+    /// Children of a sub-simplex (`xdecqv`): connectivities with the local
+    /// ids 101.. (intersections) and 201.. (mid-points).
+    fn decqv(&self, sub: &[u32], d: &Decoupe) -> Result<Vec<Vec<u32>>, String> {
+        if !d.cut {
+            return Ok(vec![sub.to_vec()]);
+        }
+        let n = d.inter.len();
+        let s = |k: usize| sub[k - 1];
+        let mut out: Vec<Vec<u32>> = Vec::new();
+        if self.dim == 2 {
+            let ed = &TRIA6_EDGES;
+            // a: vertex shared by the edges of points i and j; b, c: their other ends; e: mid-node of the third edge.
+            let abce = |a1: usize, a2: usize| -> Option<[usize; 4]> {
+                let mut r = None;
+                for i in 0..2 {
+                    for j in 0..2 {
+                        if ed[a1 - 1][i] == ed[a2 - 1][j] {
+                            r = Some([ed[a1 - 1][i], ed[a1 - 1][1 - i], ed[a2 - 1][1 - j], ed[6 - a1 - a2 - 1][2]]);
+                        }
+                    }
+                }
+                r
+            };
+            match (n, d.npts) {
+                (2, 0) => {
+                    let [a, b, c, e] = abce(d.inter[0].edge, d.inter[1].edge).ok_or("TOPOSE: xdecqv: bad edges")?;
+                    out.push(vec![101, 102, s(a), 205, 204, 202]);
+                    out.push(vec![101, 102, s(c), 205, 203, 206]);
+                    out.push(vec![101, s(b), s(c), 201, s(e), 206]);
+                }
+                (2, 1) => {
+                    let ip1 = d.inter[0].node;
+                    let a2 = d.inter[1].edge;
+                    let (b, c) = (ed[a2 - 1][0], ed[a2 - 1][1]);
+                    let (mut e, mut f) = (0, 0);
+                    for r in ed {
+                        for j in 0..2 {
+                            if s(r[j]) == ip1 && r[1 - j] == b {
+                                e = r[2];
+                            }
+                            if s(r[j]) == ip1 && r[1 - j] == c {
+                                f = r[2];
+                            }
+                        }
+                    }
+                    if e * f == 0 {
+                        return Err("TOPOSE: xdecqv: vertex point not found on the sub-element".into());
+                    }
+                    out.push(vec![ip1, 102, s(b), 203, 202, s(e)]);
+                    out.push(vec![ip1, 102, s(c), 203, 201, s(f)]);
+                }
+                (3, 1) => {
+                    let [a, b, c, e] = abce(d.inter[1].edge, d.inter[2].edge).ok_or("TOPOSE: xdecqv: bad edges")?;
+                    out.push(vec![102, 103, s(a), 205, 204, 202]);
+                    out.push(vec![102, 103, s(c), 205, 203, 206]);
+                    out.push(vec![102, s(b), s(c), 201, s(e), 206]);
+                }
+                _ => out.push(sub.to_vec()),
+            }
+        } else {
+            let ed = &TETRA10_EDGES;
+            let midn = |p: usize, q: usize| -> usize {
+                ed.iter().find(|r| (r[0] == p && r[1] == q) || (r[0] == q && r[1] == p)).map(|r| r[2]).unwrap_or(0)
+            };
+            let (a1, a2) = (d.inter[0].edge, d.inter[1].edge);
+            let (mut a, mut b, mut c) = (0, 0, 0);
+            for i in 0..2 {
+                for j in 0..2 {
+                    if ed[a1 - 1][i] == ed[a2 - 1][j] {
+                        a = ed[a1 - 1][i];
+                        b = ed[a1 - 1][1 - i];
+                        c = ed[a2 - 1][1 - j];
+                    }
+                }
+            }
+            match (n, d.npts) {
+                (3, 0) => {
+                    let a3 = d.inter[2].edge;
+                    let dd = (0..2).find(|&i| ed[a3 - 1][i] == a).map(|i| ed[a3 - 1][1 - i]).unwrap_or(0);
+                    let (e, f, g) = (midn(b, c), midn(c, dd), midn(b, dd));
+                    if a * b * c * dd * e * f * g == 0 {
+                        return Err("TOPOSE: xdecqv: inconsistent 3-point cutting".into());
+                    }
+                    out.push(vec![101, 102, 103, s(a), 207, 208, 209, 202, 204, 206]);
+                    let pr = [
+                        101,
+                        102,
+                        103,
+                        s(b),
+                        s(c),
+                        s(dd),
+                        207,
+                        208,
+                        209,
+                        201,
+                        203,
+                        205,
+                        s(e),
+                        s(f),
+                        s(g),
+                        210,
+                        211,
+                        212,
+                    ];
+                    out.extend(xpente(&pr).iter().map(|t| t.to_vec()));
+                }
+                (4, 0) => {
+                    let (a3, a4) = (d.inter[2].edge, d.inter[3].edge);
+                    let mut dd = 0;
+                    for i in 0..2 {
+                        for j in 0..2 {
+                            if ed[a3 - 1][i] == ed[a4 - 1][j] {
+                                dd = ed[a3 - 1][i];
+                            }
+                        }
+                    }
+                    let (e, f) = (midn(b, c), midn(a, dd));
+                    if a * b * c * dd * e * f == 0 {
+                        return Err("TOPOSE: xdecqv: inconsistent 4-point cutting".into());
+                    }
+                    let p1 =
+                        [104, 102, s(c), 103, 101, s(b), 210, 203, 207, 211, 209, s(e), 212, 201, 205, 213, 214, 216];
+                    let p2 =
+                        [s(a), 101, 102, s(dd), 103, 104, 202, 209, 204, s(f), 212, 210, 206, 211, 208, 217, 213, 215];
+                    out.extend(xpente(&p1).iter().map(|t| t.to_vec()));
+                    out.extend(xpente(&p2).iter().map(|t| t.to_vec()));
+                }
+                _ => {
+                    return Err(format!("TOPOSE: 3D cutting with {n} points, {} on vertices, is not supported", d.npts))
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// Orientation of the TETRA10 children (`xdecqv`): a negative volume
+    /// swaps vertices 3↔4 and mid-nodes 6↔9, 7↔8.
+    fn orient(&self, children: &mut [Vec<u32>], d: &Decoupe) -> Result<(), String> {
+        if self.dim != 3 {
+            return Ok(());
+        }
+        for ch in children.iter_mut() {
+            let mut v = [[0.0; 3]; 4];
+            for (k, vk) in v.iter_mut().enumerate() {
+                if self.is_centre(ch[k]) {
+                    return Err("TOPOSE: a centre node is a vertex of a sub-tetrahedron".into());
+                }
+                *vk = self.pt(ch[k], &d.inter, &d.mil)?.x;
+            }
+            let ps = dot(&cross(&sub3(&v[1], &v[0]), &sub3(&v[2], &v[0])), &sub3(&v[3], &v[0]));
+            if ps < 0.0 {
+                ch.swap(2, 3);
+                ch.swap(8, 5);
+                ch.swap(6, 7);
+            }
+        }
+        Ok(())
+    }
+
+    /// Heaviside values of the children (`xdecqv`): earlier cracks copied
+    /// from the parent sub-simplex, the current one from the sign of the sum
+    /// of its level set over the nodes (generated points at vertices only).
+    fn heaviside(
+        &self,
+        children: &[Vec<u32>],
+        d: &Decoupe,
+        parent_he: &[i32],
+        ifiss: usize,
+        fisc: &[(usize, f64)],
+    ) -> Result<Vec<Vec<i32>>, String> {
+        let nnose = children.first().map(|c| c.len()).unwrap_or(0) as f64;
+        let mut out = Vec::new();
+        for ch in children {
+            let mut he: Vec<i32> = parent_he[..ifiss].to_vec();
+            he.push(0);
+            let mut som = vec![0.0; fisc.len()];
+            let (mut cur, mut abslsn) = (0.0, 0.0);
+            let mut bary = [0.0; 3];
+            for (pos, &id) in ch.iter().enumerate() {
+                let p = self.pt(id, &d.inter, &d.mil)?;
+                for (b, x) in bary.iter_mut().zip(&p.x) {
+                    *b += x / nnose;
+                }
+                let generated = id as usize > self.nno && !self.is_centre(id);
+                if generated && pos > self.dim {
+                    continue;
+                }
+                let l = self.node_lsn(id, ifiss, &d.inter, &d.mil)?;
+                for (sm, &(m, _)) in som.iter_mut().zip(fisc) {
+                    *sm += self.node_lsn(id, m, &d.inter, &d.mil)?;
+                }
+                cur += l;
+                abslsn += l.abs();
+            }
+            if ifiss == 1 && fisc.len() == 1 && fisc[0].1 * som[0] > 0.0 {
+                he[0] = if fisc[0].1 < 0.0 { -1 } else { 1 };
+            }
+            if fisc.iter().zip(&som).any(|(&(_, c), s)| c * s > 0.0) {
+                out.push(he);
+                continue;
+            }
+            if abslsn * self.lonref < 1e-8 {
+                let xi = crate::fem::reference::inverse_map(
+                    self.t,
+                    self.coords,
+                    &bary,
+                    &crate::fem::reference::InverseMapOptions::default(),
+                )
+                .map_err(|e| format!("TOPOSE: barycentre of a sub-element: {e}"))?
+                .xi;
+                cur = self.interp(&xi, ifiss);
+            }
+            he[ifiss] = if cur < 0.0 { -1 } else { 1 };
+            out.push(he);
+        }
+        Ok(out)
+    }
+}
+
+/// Cut a parent cell by its interfaces, as TOPOSE (`te0514`) does. `coords`
+/// and `cracks[k].lsn` follow Code_Aster's local node order; the cracks are
+/// in the cell's order (model order).
+pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Result<Cutting, String> {
+    let (dim, nno) = match t {
+        CellType::Quad8 => (2, 8),
+        CellType::Hexa20 => (3, 20),
+        _ => return Err(format!("TOPOSE: parent cell type {} is not supported (QUAD8, HEXA20 only)", t.name())),
+    };
+    if coords.len() != nno {
+        return Err(format!("TOPOSE: {} needs {nno} node coordinates, got {}", t.name(), coords.len()));
+    }
+    if cracks.is_empty() {
+        return Err("TOPOSE: the cell sees no crack".into());
+    }
+    if cracks.len() > 10 {
+        return Err("TOPOSE: more than 10 cracks in a cell (XFEM2_6)".into());
+    }
+    for (k, c) in cracks.iter().enumerate() {
+        if c.lsn.len() != nno {
+            return Err(format!("TOPOSE: crack {} has {} level-set values for {nno} nodes", k + 1, c.lsn.len()));
+        }
+    }
+    let lsn: Vec<&[f64]> = cracks.iter().map(|c| c.lsn.as_slice()).collect();
+    let mut ctx = Ctx {
+        t,
+        dim,
+        nno,
+        coords,
+        lsn,
+        centre: Vec::new(),
+        centre_lsn: Vec::new(),
+        pint: Vec::new(),
+        pmil: Vec::new(),
+        lonref: loncar(t, coords),
+    };
+    let full = if dim == 2 { CellType::Quad9 } else { CellType::Hexa27 };
+    for xi in &node_coords(full)[nno..] {
+        let p = ctx.to_real(*xi);
+        let l = (0..cracks.len()).map(|k| ctx.interp(xi, k)).collect();
+        ctx.centre.push(p);
+        ctx.centre_lsn.push(l);
+    }
+    let mut subs: Vec<Vec<u32>> = if dim == 2 {
+        QUAD8_SPLIT.iter().map(|s| s.to_vec()).collect()
+    } else {
+        HEXA20_SPLIT.iter().map(|s| s.to_vec()).collect()
+    };
+    let mut heav: Vec<Vec<i32>> = vec![vec![0; cracks.len()]; subs.len()];
+    for ifiss in 0..cracks.len() {
+        let fisc = master_chain(cracks, ifiss)?;
+        let nit = subs.len();
+        for it in 0..nit {
+            let d = ctx.decqu(&subs[it], ifiss, &fisc)?;
+            let mut children = ctx.decqv(&subs[it], &d)?;
+            ctx.orient(&mut children, &d)?;
+            let hes = ctx.heaviside(&children, &d, &heav[it], ifiss, &fisc)?;
+            // Archive the intersection points (vertex points keep their id).
+            for (ipt, p) in d.inter.iter().enumerate() {
+                let mut found = None;
+                for (i, q) in ctx.pint.iter().enumerate() {
+                    if dist(&q.x, &p.p.x) < ctx.lonref * CRIDIST {
+                        found = Some(i);
+                    }
+                }
+                if p.edge == 0 {
+                    continue;
+                }
+                let ni = match found {
+                    Some(i) => i,
+                    None => {
+                        ctx.pint.push(p.p);
+                        ctx.pint.len() - 1
+                    }
+                };
+                for ch in children.iter_mut() {
+                    for v in ch.iter_mut().take(dim + 1) {
+                        if *v == 101 + ipt as u32 {
+                            *v = 1001 + ni as u32;
+                        }
+                    }
+                }
+            }
+            for (ipt, p) in d.mil.iter().enumerate() {
+                let mut found = None;
+                for (i, q) in ctx.pmil.iter().enumerate() {
+                    if dist(&q.x, &p.x) < ctx.lonref * CRIDIST {
+                        found = Some(i);
+                    }
+                }
+                let ni = match found {
+                    Some(i) => i,
+                    None => {
+                        ctx.pmil.push(*p);
+                        ctx.pmil.len() - 1
+                    }
+                };
+                for ch in children.iter_mut() {
+                    for v in ch.iter_mut() {
+                        if *v == 201 + ipt as u32 {
+                            *v = 2001 + ni as u32;
+                        }
+                    }
+                }
+            }
+            for (k, (ch, he)) in children.into_iter().zip(hes).enumerate() {
+                if ch.iter().any(|&v| (100..1000).contains(&v)) {
+                    return Err("TOPOSE: internal error, a local point id was left in a sub-element".into());
+                }
+                let mut h = heav[it].clone();
+                h[..=ifiss].copy_from_slice(&he);
+                if k == 0 {
+                    subs[it] = ch;
+                    heav[it] = h;
+                } else {
+                    subs.push(ch);
+                    heav.push(h);
+                }
+            }
+        }
+    }
+    // Centre nodes still in use become 3000+k, k following the mid-points.
+    let mut centre_ids: Vec<(u32, Pt)> = Vec::new();
+    for j in 0..ctx.centre.len() {
+        let old = (nno + j + 1) as u32;
+        if subs.iter().any(|s| s.contains(&old)) {
+            let id = 3001 + (ctx.pmil.len() + centre_ids.len()) as u32;
+            centre_ids.push((id, ctx.centre[j]));
+            for s in subs.iter_mut() {
+                for v in s.iter_mut() {
+                    if *v == old {
+                        *v = id;
+                    }
+                }
+            }
+        }
+    }
+    // Points: parent nodes, intersections, mid-points, centre nodes.
+    let ncr = cracks.len();
+    let mut points: Vec<CutPoint> = Vec::new();
+    let rnodes = node_coords(t);
+    for j in 0..nno {
+        points.push(CutPoint {
+            id: (j + 1) as u32,
+            xi: rnodes[j],
+            x: coords[j],
+            lsn: (0..ncr).map(|k| cracks[k].lsn[j]).collect(),
+        });
+    }
+    let generated = ctx
+        .pint
+        .iter()
+        .enumerate()
+        .map(|(k, p)| (1001 + k as u32, *p))
+        .chain(ctx.pmil.iter().enumerate().map(|(k, p)| (2001 + k as u32, *p)))
+        .chain(centre_ids.iter().copied());
+    for (id, p) in generated {
+        points.push(CutPoint { id, xi: p.xi, x: p.x, lsn: (0..ncr).map(|k| ctx.interp(&p.xi, k)).collect() });
+    }
+    let index: std::collections::HashMap<u32, usize> = points.iter().enumerate().map(|(i, p)| (p.id, i)).collect();
+    let subcells = subs
+        .iter()
+        .zip(heav)
+        .map(|(s, he)| {
+            let nodes = s
+                .iter()
+                .map(|v| index.get(v).copied().ok_or_else(|| format!("TOPOSE: internal error, point {v} missing")))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(SubCell { nodes, he })
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    Ok(Cutting { points, subcells })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The QUAD8 [0,2]×[0,1] in Code_Aster order.
+    fn quad8() -> Vec<[f64; 3]> {
+        let v = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0]];
+        let mut c: Vec<[f64; 3]> = v.iter().map(|p| [p[0], p[1], 0.0]).collect();
+        for i in 0..4 {
+            let (a, b) = (v[i], v[(i + 1) % 4]);
+            c.push([(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0, 0.0]);
+        }
+        c
+    }
+
+    fn area(cut: &Cutting, s: &SubCell) -> f64 {
+        let p = |k: usize| cut.points[s.nodes[k]].x;
+        let (a, b, c) = (p(0), p(1), p(2));
+        // TRIA6 children are not reoriented in 2D (te0514 only checks tetrahedra).
+        (((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) / 2.0).abs()
+    }
+
+    fn check_straight(cut: &Cutting) {
+        for s in &cut.subcells {
+            for (m, a, b) in [(3, 0, 1), (4, 1, 2), (5, 2, 0)] {
+                let (pm, pa, pb) = (cut.points[s.nodes[m]].x, cut.points[s.nodes[a]].x, cut.points[s.nodes[b]].x);
+                for k in 0..3 {
+                    assert!((pm[k] - (pa[k] + pb[k]) / 2.0).abs() < 1e-12);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn uncut_quad8_is_split_along_diagonal_2_4() {
+        let c = quad8();
+        let lsn: Vec<f64> = c.iter().map(|p| p[1] + 3.0).collect();
+        let cut = topose(CellType::Quad8, &c, &[CrackInCell { lsn, master: None }]).unwrap();
+        assert_eq!(cut.subcells.len(), 2);
+        let ids: Vec<Vec<u32>> =
+            cut.subcells.iter().map(|s| s.nodes.iter().map(|&i| cut.points[i].id).collect()).collect();
+        assert_eq!(ids, vec![vec![1, 2, 4, 5, 3001, 8], vec![2, 3, 4, 6, 7, 3001]]);
+        assert!(cut.subcells.iter().all(|s| s.he == vec![1]));
+        let total: f64 = cut.subcells.iter().map(|s| area(&cut, s)).sum();
+        assert!((total - 2.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn quad8_cut_by_one_line() {
+        let c = quad8();
+        // y = 0.3 + 0.15 x: crosses edges 4-1 (x=0) and 2-3 (x=2) and the diagonal 2-4.
+        let lsn: Vec<f64> = c.iter().map(|p| p[1] - 0.3 - 0.15 * p[0]).collect();
+        let cut = topose(CellType::Quad8, &c, &[CrackInCell { lsn, master: None }]).unwrap();
+        check_straight(&cut);
+        let total: f64 = cut.subcells.iter().map(|s| area(&cut, s)).sum();
+        assert!((total - 2.0).abs() < 1e-12, "{total}");
+        assert!(cut.subcells.iter().all(|s| area(&cut, s) > 1e-3));
+        // Both primary triangles are cut in 3: 6 sub-elements.
+        assert_eq!(cut.subcells.len(), 6);
+        // Three distinct intersection points: on edge 4-1, on the diagonal, on edge 2-3.
+        let inter: Vec<&CutPoint> = cut.points.iter().filter(|p| (1001..2000).contains(&p.id)).collect();
+        assert_eq!(inter.len(), 3);
+        for p in &inter {
+            assert!(p.lsn[0].abs() < 1e-14);
+        }
+        assert_eq!(inter[0].id, 1001);
+        // First triangle (1,2,4): the points are on its edges 2-4 (edge 2) and 4-1 (edge 3).
+        assert!((inter[0].x[0] - 0.7 / 0.65).abs() < 1e-12 && (inter[0].x[1] - (1.0 - 0.35 / 0.65)).abs() < 1e-12);
+        assert!((inter[1].x[0]).abs() < 1e-12 && (inter[1].x[1] - 0.3).abs() < 1e-12);
+        assert!((inter[2].x[0] - 2.0).abs() < 1e-12 && (inter[2].x[1] - 0.6).abs() < 1e-12);
+        // Sides: every sub-element's points agree with its sign.
+        for s in &cut.subcells {
+            for &i in &s.nodes {
+                assert!(cut.points[i].lsn[0] * s.he[0] as f64 >= -1e-12);
+            }
+        }
+        // First child replaces slot 1 (the child holding vertex 4, above the line).
+        assert_eq!(cut.subcells[0].he, vec![1]);
+        let ids: Vec<u32> = cut.subcells[0].nodes.iter().map(|&i| cut.points[i].id).collect();
+        assert_eq!(&ids[..3], &[1001, 1002, 4]);
+        // The cut diagonal no longer uses the centre node.
+        assert!(cut.points.iter().all(|p| p.id < 3000));
+        assert_eq!(
+            cut.points.iter().filter(|p| (2001..3000).contains(&p.id)).count(),
+            6 + 4,
+            "the two halves of the diagonal are shared"
+        );
+    }
+
+    #[test]
+    fn quad8_cut_through_a_vertex() {
+        let c = quad8();
+        // Through node 1 (0,0) and the point (2, 0.5) of edge 2-3.
+        let lsn: Vec<f64> = c.iter().map(|p| p[1] - 0.25 * p[0]).collect();
+        let cut = topose(CellType::Quad8, &c, &[CrackInCell { lsn, master: None }]).unwrap();
+        check_straight(&cut);
+        let total: f64 = cut.subcells.iter().map(|s| area(&cut, s)).sum();
+        assert!((total - 2.0).abs() < 1e-12);
+        for s in &cut.subcells {
+            assert!(area(&cut, s) > 1e-3);
+            for &i in &s.nodes {
+                assert!(cut.points[i].lsn[0] * s.he[0] as f64 >= -1e-12);
+            }
+        }
+        // Vertex 1 is used as it is, no intersection point is made there.
+        assert!(cut.points.iter().filter(|p| (1001..2000).contains(&p.id)).all(|p| p.x[0] > 0.5));
+    }
+
+    #[test]
+    fn other_types_are_refused() {
+        let e = topose(CellType::Tria6, &[[0.0; 3]; 6], &[]).unwrap_err();
+        assert!(e.contains("TRIA6"), "{e}");
+    }
+}
