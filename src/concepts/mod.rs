@@ -99,6 +99,7 @@ pub enum ConceptData {
     Load(model::Load),
     Result(result::ResultData),
     Crack(crate::xfem::Crack),
+    Contact(model::Contact),
     Field(result::FieldData),
 }
 

@@ -29,6 +29,8 @@ pub struct Model {
     pub mesh_concept: ConceptRef,
     /// Per cell: its element, or None where the model puts nothing.
     pub elements: Vec<Option<Element>>,
+    /// MODI_MODELE_XFEM: the enrichment, cuttings and cracks.
+    pub xfem: Option<Rc<crate::xfem::model::XfemModel>>,
 }
 
 /// The space dimension a modelisation works in, and whether it is one we know.
@@ -146,4 +148,23 @@ pub struct Load {
     pub items: Vec<LoadItem>,
     /// AFFE_CHAR_MECA_F: values are functions.
     pub functional: bool,
+}
+
+/// A ZONE of DEFI_CONTACT FORMULATION='XFEM' with ALGO_CONT='CZM'.
+#[derive(Debug, Clone)]
+pub struct ContactZone {
+    /// FISS_MAIT.
+    pub crack: ConceptRef,
+    /// INTEGRATION='GAUSS' with ORDRE_INT.
+    pub order: i64,
+    /// RELATION (CZM_LIN_MIX).
+    pub relation: String,
+}
+
+/// DEFI_CONTACT: the contact (cohesive) zones of an X-FEM model.
+#[derive(Debug)]
+pub struct Contact {
+    pub model: ConceptRef,
+    pub zones: Vec<ContactZone>,
+    pub iter_cont_maxi: i64,
 }

@@ -124,12 +124,33 @@ fn run_file(
 }
 
 /// The scene `aster run` runs when given no case (comm/hardening_curve.comm).
-pub const DEFAULT_SCENE: (&str, &str) = ("hardening_curve.comm", include_str!("../../comm/hardening_curve.comm"));
+pub const DEFAULT_SCENE: (&str, &str) = ("junction_2d.comm", include_str!("../../comm/junction_2d.comm"));
 
-/// Run the embedded default scene.
+/// The mesh of the default scene (unit 20), made by `aster mesh box`.
+pub const DEFAULT_MESH: (&str, &[u8]) = ("junction_quad8.med", include_bytes!("../../med/junction_quad8.med"));
+
+/// Run the embedded default scene: the WTNV149-like 2D block with two
+/// cohesive X-FEM interfaces meeting at a junction. Its mesh is written to a
+/// temporary file given as unit 20, its MED result goes to unit 80.
 pub fn run_default(opts: &RunOptions) -> Outcome {
     let (file, src) = DEFAULT_SCENE;
-    run_text(file, src, file.trim_end_matches(".comm"), opts.units.clone(), None, false, opts)
+    let name = file.trim_end_matches(".comm");
+    let dir = std::env::temp_dir().join(format!("aster-rs-default-{}", std::process::id()));
+    let mesh = dir.join(DEFAULT_MESH.0);
+    if let Err(e) = std::fs::create_dir_all(&dir).and_then(|_| std::fs::write(&mesh, DEFAULT_MESH.1)) {
+        return Outcome::failed(name, "<F>_ERROR", format!("cannot write the default mesh {}: {e}", mesh.display()));
+    }
+    let mut units = opts.units.clone();
+    if !units.iter().any(|(u, ..)| *u == 20) {
+        units.push((20, mesh, Dir::In));
+    }
+    if !units.iter().any(|(u, ..)| *u == 80) {
+        let out = opts.out_dir.clone().unwrap_or_else(|| PathBuf::from("."));
+        units.push((80, out.join(format!("{name}.rmed")), Dir::Out));
+    }
+    let o = run_text(file, src, name, units, None, false, opts);
+    let _ = std::fs::remove_dir_all(&dir);
+    o
 }
 
 fn run_text(

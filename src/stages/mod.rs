@@ -20,6 +20,7 @@ pub mod tables;
 pub mod tests;
 pub mod verdict;
 pub mod xfem;
+mod xfem_solve;
 
 use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
@@ -111,6 +112,10 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "MODI_MAILLAGE" => orient::modi_maillage,
         "MODI_REPERE" => repere::modi_repere,
         "DEFI_FISS_XFEM" => xfem::defi_fiss_xfem,
+        "MODI_MODELE_XFEM" => xfem::modi_modele_xfem,
+        "DEFI_CONTACT" => xfem::defi_contact,
+        "POST_MAIL_XFEM" => xfem::post_mail_xfem,
+        "POST_CHAM_XFEM" => xfem::post_cham_xfem,
         _ => return None,
     })
 }

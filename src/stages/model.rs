@@ -141,7 +141,7 @@ pub fn affe_modele(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         text.push_str(&format!("    {m:<12} {t:<8} {n:>8}\n"));
     }
     ctx.io.mess(&text);
-    Ok(Some(ConceptData::Model(Model { mesh, mesh_concept: mc, elements })))
+    Ok(Some(ConceptData::Model(Model { mesh, mesh_concept: mc, elements, xfem: None })))
 }
 
 // ------------------------------------------------------------------ DEFI_MATERIAU

@@ -17,7 +17,7 @@ fn inf_norm(v: &[f64]) -> f64 {
 
 /// The computation instants: the list, cut to INST_INIT / INST_FIN (or their
 /// NUME_INST_* forms). The first one is the initial state.
-fn instants(a: &Args) -> Result<Vec<f64>> {
+pub(super) fn instants(a: &Args) -> Result<Vec<f64>> {
     let inc = a.fact("INCREMENT").ok_or_else(|| a.err("INCREMENT", "INCREMENT is required"))?;
     let lc = inc.req_concept("LIST_INST")?;
     let list = match &*lc.data() {
@@ -52,6 +52,11 @@ fn instants(a: &Args) -> Result<Vec<f64>> {
 }
 
 pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    if let Some(mo) = a.concept("MODELE") {
+        if super::model::model_of(&mo)?.xfem.is_some() {
+            return super::xfem_solve::stat_non_line_xfem(ctx, a, &mo);
+        }
+    }
     for kw in [
         "CONTACT",
         "SOUS_STRUC",

@@ -56,7 +56,7 @@ pub fn eval_at(c: &ConceptRef, x: &[f64; 3], inst: f64) -> Result<f64> {
 /// A material parameter as a real: a real, or a function that does not
 /// depend on a variable unknown here (DEFI_CONSTANTE, NOM_PARA 'TOUTPARA';
 /// a formula of no parameter). None when the parameter is not given.
-fn mat_param(m: &Material, behaviour: &str, param: &str, cell: &str) -> Result<Option<f64>> {
+pub(super) fn mat_param(m: &Material, behaviour: &str, param: &str, cell: &str) -> Result<Option<f64>> {
     let Some(v) = m.behaviours.get(behaviour).and_then(|b| b.get(param)) else {
         return Ok(None);
     };
@@ -104,7 +104,7 @@ const ELASTIC_BEHAVIOURS: &[(&str, &[&str])] = &[
 ];
 
 /// The elastic law of a material and its density RHO (0 when not given).
-fn elastic_of(m: &Material, cell: &str) -> Result<(IsoElastic, f64)> {
+pub(super) fn elastic_of(m: &Material, cell: &str) -> Result<(IsoElastic, f64)> {
     let Some((beh, params)) = ELASTIC_BEHAVIOURS.iter().find(|(b, _)| m.behaviours.contains_key(*b)) else {
         let others: Vec<&str> = m.behaviours.keys().map(String::as_str).collect();
         return Err(Error::unsupported(format!(
@@ -203,7 +203,7 @@ fn coords_of(mesh: &Mesh, cell: usize) -> Vec<[f64; 3]> {
 }
 
 /// The loads of EXCIT with their multiplier at `inst`.
-fn loads(a: &Args, inst: f64) -> Result<Vec<(ConceptRef, f64)>> {
+pub(super) fn loads(a: &Args, inst: f64) -> Result<Vec<(ConceptRef, f64)>> {
     let mut out = Vec::new();
     for occ in a.facts("EXCIT") {
         if occ.given("TYPE_CHARGE") && occ.text("TYPE_CHARGE") != Some("FIXE_CSTE") {

@@ -6,10 +6,17 @@
 use super::statics::eval_at;
 use super::Ctx;
 use crate::catalog::args::Args;
+use crate::concepts::model::Model;
+use crate::concepts::result::Field;
 use crate::concepts::ConceptData;
 use crate::diag::{Error, Result};
+use crate::xfem::model::XfemModel;
+use crate::xfem::postmail::{visual_mesh, NodeOrigin, Prefixes, VisualMesh};
+use crate::xfem::topose::{topose, CrackInCell};
 use crate::xfem::{build_interface, crack_of, Crack};
+use std::collections::BTreeMap;
 use std::fmt::Write as _;
+use std::rc::Rc;
 
 pub fn defi_fiss_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     a.refuse(&["MAILLAGE_GRILLE", "FISS_GRILLE", "TYPE_ENRI_FOND", "RAYON_ENRI", "NB_COUCHES"])?;
@@ -119,4 +126,335 @@ fn report(k: &Crack) -> Result<String> {
         );
     }
     Ok(s)
+}
+
+// ------------------------------------------------------------------ MODI_MODELE_XFEM
+
+/// MODI_MODELE_XFEM: the X-FEM cells of the model (cells with a
+/// Heaviside-enriched node), the cracks each sees, their cutting into
+/// sub-cells (TOPOSE), the regions and the enrichment sets of the nodes.
+pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    a.refuse(&["MODELE_THER"])?;
+    let contact = a.text("CONTACT").unwrap_or("SANS").to_string();
+    if contact == "STANDARD" {
+        return Err(a.err("CONTACT", "CONTACT='STANDARD' is not supported yet (only 'SANS' and 'MORTAR')"));
+    }
+    if a.text("DECOUPE_FACETTE").is_some_and(|d| d != "SOUS_ELEMENTS") && contact == "MORTAR" {
+        // Code_Aster's default facet cutting differs from the sub-cell faces.
+        return Err(
+            a.err("DECOUPE_FACETTE", "with CONTACT='MORTAR' only DECOUPE_FACETTE='SOUS_ELEMENTS' is supported yet")
+        );
+    }
+    let mo = a.req_concept("MODELE_IN")?;
+    let cracks = a.concepts("FISSURE");
+    let (mesh, mesh_concept, elements) = {
+        let m = super::model::model_of(&mo)?;
+        if m.xfem.is_some() {
+            return Err(a.err("MODELE_IN", format!("{} is already an X-FEM model", mo.label())));
+        }
+        (m.current_mesh(), m.mesh_concept.clone(), m.elements.clone())
+    };
+    let model_cells: Vec<usize> = (0..mesh.ncells())
+        .filter(|&c| elements[c].as_ref().is_some_and(|e| e.role == crate::concepts::model::Role::Bulk))
+        .collect();
+    let mut lsn = Vec::new();
+    let mut masters = Vec::new();
+    let mut enriched = Vec::new();
+    let mut hcells: Vec<Vec<usize>> = Vec::new();
+    let mut names = Vec::new();
+    for (i, f) in cracks.iter().enumerate() {
+        let k = crack_of(f)?;
+        if !Rc::ptr_eq(&k.mesh_concept, &mesh_concept) || k.lsn.len() != mesh.nnodes() {
+            return Err(a.err("FISSURE", format!("{} is defined on another mesh than {}", f.label(), mo.label())));
+        }
+        if cracks[..i].iter().any(|g| Rc::ptr_eq(g, f)) {
+            return Err(a.err("FISSURE", format!("{} is given twice", f.label())));
+        }
+        lsn.push(k.lsn.clone());
+        enriched.push((0..mesh.nnodes()).map(|n| k.enriched(n)).collect::<Vec<bool>>());
+        hcells.push(k.heaviside_cells.clone());
+        names.push(f.label());
+        masters.push(k.master().and_then(|(m, c)| cracks.iter().position(|g| Rc::ptr_eq(g, m)).map(|p| (p, c))));
+        if let Some((m, _)) = k.master() {
+            if !cracks.iter().any(|g| Rc::ptr_eq(g, m)) {
+                return Err(
+                    a.err("FISSURE", format!("{} branches on {}, which must be in FISSURE too", f.label(), m.label()))
+                );
+            }
+        }
+    }
+    let mut cuttings = BTreeMap::new();
+    for &c in &model_cells {
+        let seen: Vec<usize> = (0..cracks.len()).filter(|&g| hcells[g].binary_search(&c).is_ok()).collect();
+        if seen.is_empty() {
+            continue;
+        }
+        let nodes = &mesh.cells[c];
+        let cic: Vec<CrackInCell> = seen
+            .iter()
+            .map(|&g| CrackInCell {
+                lsn: nodes.iter().map(|&n| lsn[g][n]).collect(),
+                master: masters[g].and_then(|(m, coef)| seen.iter().position(|&s| s == m).map(|p| (p, coef))),
+            })
+            .collect();
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let cut = topose(mesh.cell_types[c], &coords, &cic)
+            .map_err(|e| a.err("FISSURE", format!("cutting cell {}: {e}", mesh.cell_names[c])))?;
+        cuttings.insert(c, (seen, cut));
+    }
+    let xm = XfemModel::new(&mesh, &model_cells, cracks.clone(), names, lsn, masters, enriched, contact, cuttings)
+        .map_err(|e| a.err("FISSURE", e))?;
+    let nsub: usize = xm.cells.values().map(|c| c.cutting.subcells.len()).sum();
+    let ncut = xm.cells.values().filter(|c| {
+        let mut r = c.regions.clone();
+        r.sort_unstable();
+        r.dedup();
+        r.len() > 1
+    });
+    let mut s = String::new();
+    let _ = writeln!(s, "  MODI_MODELE_XFEM ({} crack(s), CONTACT='{}'):", cracks.len(), xm.contact);
+    let _ = writeln!(s, "    X-FEM cells                          : {} ({} cut)", xm.cells.len(), ncut.count());
+    let _ = writeln!(s, "    sub-cells                            : {nsub}");
+    let enr = xm.node_sets.iter().filter(|v| !v.is_empty()).count();
+    let _ = writeln!(s, "    nodes with Heaviside sets            : {enr} ({} sets)", xm.n_sets());
+    ctx.io.mess(&s);
+    Ok(Some(ConceptData::Model(Model { mesh, mesh_concept, elements, xfem: Some(Rc::new(xm)) })))
+}
+
+// ------------------------------------------------------------------ DEFI_CONTACT
+
+/// DEFI_CONTACT FORMULATION='XFEM' with cohesive zones (ALGO_CONT='CZM',
+/// RELATION='CZM_LIN_MIX', ALGO_LAGR='VERSION2', INTEGRATION='GAUSS') on an
+/// X-FEM model with CONTACT='MORTAR'. Every other formulation or option
+/// stops by name.
+pub fn defi_contact(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    let form = a.text("FORMULATION").unwrap_or("DISCRETE");
+    if form != "XFEM" {
+        return Err(a.err("FORMULATION", format!("FORMULATION='{form}' is not supported yet (only 'XFEM')")));
+    }
+    if a.text("FROTTEMENT").is_some_and(|f| f != "SANS") {
+        return Err(a.err("FROTTEMENT", "friction is not supported yet"));
+    }
+    for kw in ["REAC_GEOM", "ELIM_ARETE", "ITER_CONT_TYPE"] {
+        let given = a.items.iter().any(|i| i.name == kw && !i.defaulted);
+        if given {
+            let ok = match kw {
+                "REAC_GEOM" => a.text(kw) == Some("SANS"),
+                "ELIM_ARETE" => a.text(kw) == Some("DUAL"),
+                _ => a.text(kw) == Some("MAXI"),
+            };
+            if !ok {
+                return Err(a.err(kw, "not supported yet with the cohesive X-FEM zones"));
+            }
+        }
+    }
+    let mo = a.req_concept("MODELE")?;
+    let cracks = {
+        let m = super::model::model_of(&mo)?;
+        let Some(xm) = &m.xfem else {
+            return Err(a.err("MODELE", format!("{} is not an X-FEM model (MODI_MODELE_XFEM)", mo.label())));
+        };
+        if xm.contact != "MORTAR" {
+            return Err(a.err(
+                "MODELE",
+                format!(
+                    "{}: CONTACT='{}' in MODI_MODELE_XFEM; the cohesive zones need CONTACT='MORTAR'",
+                    mo.label(),
+                    xm.contact
+                ),
+            ));
+        }
+        xm.cracks.clone()
+    };
+    let mut zones = Vec::new();
+    for occ in a.facts("ZONE") {
+        let algo = occ.text("ALGO_CONT").unwrap_or("STANDARD");
+        if algo != "CZM" {
+            return Err(occ.err("ALGO_CONT", format!("ALGO_CONT='{algo}' is not supported yet (only 'CZM')")));
+        }
+        let rel = occ.req_text("RELATION")?;
+        if rel != "CZM_LIN_MIX" {
+            return Err(occ.err("RELATION", format!("RELATION='{rel}' is not supported yet (only 'CZM_LIN_MIX')")));
+        }
+        let lagr = occ.text("ALGO_LAGR").unwrap_or("AUTO");
+        if !matches!(lagr, "VERSION2" | "AUTO") {
+            return Err(occ.err("ALGO_LAGR", format!("ALGO_LAGR='{lagr}' is not supported yet (only 'VERSION2')")));
+        }
+        let integ = occ.text("INTEGRATION").unwrap_or("GAUSS");
+        if integ != "GAUSS" {
+            return Err(occ.err("INTEGRATION", format!("INTEGRATION='{integ}' is not supported yet (only 'GAUSS')")));
+        }
+        if occ.items.iter().any(|i| i.name == "TOLE_PROJ_EXT" && !i.defaulted) {
+            return Err(occ.err("TOLE_PROJ_EXT", "not supported yet"));
+        }
+        let crack = occ.req_concept("FISS_MAIT")?;
+        if !cracks.iter().any(|k| Rc::ptr_eq(k, &crack)) {
+            return Err(occ.err("FISS_MAIT", format!("{} is not a crack of model {}", crack.label(), mo.label())));
+        }
+        zones.push(crate::concepts::model::ContactZone {
+            crack,
+            order: occ.int("ORDRE_INT").unwrap_or(6),
+            relation: rel.to_string(),
+        });
+    }
+    let iter_cont_maxi = a.int("ITER_CONT_MAXI").unwrap_or(30);
+    Ok(Some(ConceptData::Contact(crate::concepts::model::Contact { model: mo, zones, iter_cont_maxi })))
+}
+
+// ------------------------------------------------------------------ POST_MAIL_XFEM / POST_CHAM_XFEM
+
+/// The visual mesh of an X-FEM model (POST_MAIL_XFEM's algorithm).
+fn visual_of(model: &crate::concepts::ConceptRef, prefixes: &Prefixes) -> Result<(VisualMesh, Rc<XfemModel>)> {
+    let m = super::model::model_of(model)?;
+    let Some(xm) = m.xfem.clone() else {
+        return Err(Error::runtime(format!("{} is not an X-FEM model (MODI_MODELE_XFEM)", model.label())));
+    };
+    let mesh = m.current_mesh();
+    let model_cells: Vec<usize> = (0..mesh.ncells()).filter(|&c| m.elements[c].is_some()).collect();
+    let cuttings: BTreeMap<usize, crate::xfem::topose::Cutting> =
+        xm.cells.iter().map(|(&c, xc)| (c, xc.cutting.clone())).collect();
+    let vm = visual_mesh(&mesh, &model_cells, &cuttings, prefixes).map_err(Error::runtime)?;
+    Ok((vm, xm))
+}
+
+/// POST_MAIL_XFEM: the mesh of the sub-cells, lips doubled, with Code_Aster's node names.
+pub fn post_mail_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    let mo = a.req_concept("MODELE")?;
+    let d = Prefixes::default();
+    let text = |k: &str, dflt: &str| a.text(k).unwrap_or(dflt).to_string();
+    let prefixes = Prefixes {
+        node_x: text("PREF_NOEUD_X", &d.node_x),
+        node_m: text("PREF_NOEUD_M", &d.node_m),
+        node_p: text("PREF_NOEUD_P", &d.node_p),
+        cell_x: text("PREF_MAILLE_X", &d.cell_x),
+        group_co: text("PREF_GROUP_CO", &d.group_co),
+    };
+    let (vm, _) = visual_of(&mo, &prefixes).map_err(|e| e.at(a.span))?;
+    let group = vm.mesh.node_groups.get(&prefixes.group_co).map(|g| g.len()).unwrap_or(0);
+    ctx.io.mess(&format!(
+        "  POST_MAIL_XFEM on {}: {} nodes, {} cells ({} X-FEM parents cut into sub-cells), group {} of {} nodes on the interfaces\n",
+        mo.label(),
+        vm.mesh.nnodes(),
+        vm.mesh.ncells(),
+        vm.parents.len(),
+        prefixes.group_co,
+        group
+    ));
+    Ok(Some(ConceptData::Mesh(Rc::new(vm.mesh))))
+}
+
+/// POST_CHAM_XFEM: DEPL of an X-FEM result on the visual mesh; each node
+/// takes the value of its side (the Heaviside tuple of its sub-cell).
+pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    let rc = a.req_concept("RESULTAT")?;
+    let visu = a.req_concept("MODELE_VISU")?;
+    let r = super::results::result_of(&rc)?;
+    let (vm, xm) = visual_of(&r.model, &Prefixes::default()).map_err(|e| e.at(a.span))?;
+    let vmesh = super::model::model_of(&visu)?.current_mesh();
+    if vmesh.nnodes() != vm.mesh.nnodes() {
+        return Err(a.err(
+            "MODELE_VISU",
+            format!(
+                "{} is not on the POST_MAIL_XFEM mesh of {} ({} nodes, expected {})",
+                visu.label(),
+                r.model.label(),
+                vmesh.nnodes(),
+                vm.mesh.nnodes()
+            ),
+        ));
+    }
+    let mesh = super::model::model_of(&r.model)?.current_mesh();
+    let ndim = mesh.dim;
+    let mut steps = Vec::new();
+    for st in &r.steps {
+        let Some(Field::Node { components, values }) = st.fields.get("DEPL") else {
+            return Err(a.err("RESULTAT", format!("{} has no DEPL at order {}", rc.label(), st.nume_ordre)));
+        };
+        let nc = components.len();
+        let idx = |c: &str| components.iter().position(|x| x == c);
+        let hm = idx("PRE1").is_some();
+        let mut out_comps: Vec<String> = ["DX", "DY", "DZ"][..ndim].iter().map(|s| s.to_string()).collect();
+        if hm {
+            out_comps.push("PRE1".into());
+        }
+        let no = out_comps.len();
+        let mut out = vec![f64::NAN; vm.mesh.nnodes() * no];
+        let hcol = |j: usize, d: usize| idx(&format!("H{}{}", j + 1, ["X", "Y", "Z"][d]));
+        for (v, origin) in vm.origins.iter().enumerate() {
+            let row = &mut out[v * no..(v + 1) * no];
+            match origin {
+                NodeOrigin::Classic(n) => {
+                    for d in 0..ndim {
+                        row[d] = values[n * nc + d];
+                    }
+                    if hm {
+                        // The pressure is linear on the vertices: at a
+                        // mid-side node, the value of the field there.
+                        row[ndim] = pressure_at_node(&mesh, values, nc, idx("PRE1").unwrap(), *n);
+                    }
+                }
+                NodeOrigin::Xfem { parent, xi, he, .. } => {
+                    let t = mesh.cell_types[*parent];
+                    let nodes = &mesh.cells[*parent];
+                    let ff = crate::fem::reference::shape(t, xi);
+                    let xc = &xm.cells[parent];
+                    let s = crate::xfem::model::point_signs(&xm.lsn, &xm.masters, nodes, &ff, &xc.cracks, he);
+                    let region = crate::xfem::region_code(&s);
+                    for d in 0..ndim {
+                        let mut u = 0.0;
+                        for (a_, &n) in nodes.iter().enumerate() {
+                            let mut un = values[n * nc + d];
+                            for j in 0..xm.node_sets[n].len() {
+                                let psi = xm.psi(n, j, region);
+                                if psi != 0.0 {
+                                    let k = hcol(j, d).expect("Heaviside component of DEPL");
+                                    un += psi * values[n * nc + k];
+                                }
+                            }
+                            u += ff[a_] * un;
+                        }
+                        row[d] = u;
+                    }
+                    if hm {
+                        // Linear pressure on the vertices.
+                        let vt = crate::fem::elasticity::vertex_type(t);
+                        let lin = crate::fem::reference::shape(vt, xi);
+                        let k = idx("PRE1").unwrap();
+                        row[ndim] = nodes.iter().zip(&lin).map(|(&n, f)| f * values[n * nc + k]).sum();
+                    }
+                }
+            }
+        }
+        let mut fields = BTreeMap::new();
+        fields.insert("DEPL".to_string(), Field::Node { components: out_comps, values: out });
+        steps.push(crate::concepts::result::Step { nume_ordre: st.nume_ordre, inst: st.inst, fields });
+    }
+    Ok(Some(ConceptData::Result(crate::concepts::result::ResultData {
+        model: visu,
+        material: None,
+        loads: Vec::new(),
+        steps,
+    })))
+}
+
+/// The (linear) pressure at a mesh node: its own value at a vertex, the
+/// interpolation of a cell's vertices at a mid-side node.
+fn pressure_at_node(mesh: &crate::mesh::Mesh, values: &[f64], nc: usize, k: usize, n: usize) -> f64 {
+    let v = values[n * nc + k];
+    if v.is_finite() {
+        return v;
+    }
+    for (c, nodes) in mesh.cells.iter().enumerate() {
+        let t = mesh.cell_types[c];
+        if t.dim() != mesh.dim {
+            continue;
+        }
+        if let Some(l) = nodes.iter().position(|&m| m == n) {
+            let xi = crate::fem::reference::node_coords(t)[l];
+            let vt = crate::fem::elasticity::vertex_type(t);
+            let lin = crate::fem::reference::shape(vt, &xi);
+            return nodes.iter().zip(&lin).map(|(&m, f)| f * values[m * nc + k]).sum();
+        }
+    }
+    v
 }

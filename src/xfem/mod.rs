@@ -7,7 +7,9 @@
 //! codes of nodes over a list of cracks (`xlsjon`, `xcalc_code`) are here.
 
 pub mod czm;
+pub mod discrete;
 pub mod levelset;
+pub mod model;
 pub mod mortar;
 pub mod postmail;
 pub mod topose;

@@ -744,6 +744,10 @@ fn post_mail_xfem() -> Command {
         .produces(ConceptKind::Maillage)
         .kw(kws![
             simp("MODELE").co(&[ConceptKind::Modele]).o(),
+            simp("PREF_NOEUD_X").txt().d("NX"),
+            simp("PREF_NOEUD_M").txt().d("NM"),
+            simp("PREF_NOEUD_P").txt().d("NP"),
+            simp("PREF_MAILLE_X").txt().d("MX"),
             simp("PREF_GROUP_CO").txt().d("NFISSU"),
             simp("TITRE").txt(),
             simp("INFO").i().d(1).one_of_i(&[1, 2]),

@@ -1,0 +1,610 @@
+//! The discrete X-FEM operators: unknown numbering, bulk stiffness of cut
+//! cells integrated on their sub-cells, interface facets with their local
+//! bases and side regions, and the mortar coupling matrices of the cohesive
+//! interface (`hm-xfem-formulation.md` §3–§4).
+//!
+//! Unknowns: per node the standard displacement (`DX DY (DZ)`) and, per
+//! enrichment set, a Heaviside displacement (`H1X ...`); per crack and per
+//! multiplier packet, λ (cohesive traction), w (interface jump) and μ (total
+//! traction), each with `ndim` local components (normal first).
+//! Displacement field in a region R: `u = Σ_i N_i (a_i + Σ_j ψ_ij(R) h_ij)`.
+
+use super::model::XfemModel;
+use crate::fem::quadrature::{aster_rule, gauss_legendre, rule_for_degree, QuadratureRule, RefDomain};
+use crate::fem::reference::{jacobian, shape, shape_and_deriv};
+use crate::mesh::{CellType, Mesh};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// Unknown numbering of an X-FEM mechanical problem.
+#[derive(Debug, Clone)]
+pub struct XDofs {
+    pub ndim: usize,
+    /// First standard unknown of each node (None: not in the model).
+    pub std: Vec<Option<usize>>,
+    /// First unknown of each enrichment set of each node.
+    pub sets: Vec<Vec<usize>>,
+    /// Per crack, per packet: first unknown (λ at +0, w at +ndim, μ at +2·ndim).
+    pub packets: Vec<Vec<usize>>,
+    pub n: usize,
+    /// Counts: standard, Heaviside, interface.
+    pub n_std: usize,
+    pub n_heaviside: usize,
+    pub n_interface: usize,
+}
+
+impl XDofs {
+    pub fn new(mesh: &Mesh, model_cells: &[usize], xm: &XfemModel, ndim: usize, packets: &[usize]) -> XDofs {
+        let nn = mesh.nnodes();
+        let mut used = vec![false; nn];
+        for &c in model_cells {
+            for &n in &mesh.cells[c] {
+                used[n] = true;
+            }
+        }
+        let mut std = vec![None; nn];
+        let mut sets = vec![Vec::new(); nn];
+        let mut n = 0;
+        let (mut n_std, mut n_h) = (0, 0);
+        for node in 0..nn {
+            if !used[node] {
+                continue;
+            }
+            std[node] = Some(n);
+            n += ndim;
+            n_std += ndim;
+            for _ in &xm.node_sets[node] {
+                sets[node].push(n);
+                n += ndim;
+                n_h += ndim;
+            }
+        }
+        let mut pk = Vec::new();
+        let start = n;
+        for &np in packets {
+            let mut v = Vec::with_capacity(np);
+            for _ in 0..np {
+                v.push(n);
+                n += 3 * ndim;
+            }
+            pk.push(v);
+        }
+        XDofs { ndim, std, sets, packets: pk, n, n_std, n_heaviside: n_h, n_interface: n - start }
+    }
+
+    /// The unknowns of a cell's nodes, node after node: standard then sets.
+    pub fn cell_dofs(&self, nodes: &[usize]) -> Vec<usize> {
+        let mut v = Vec::new();
+        for &n in nodes {
+            let s = self.std[n].expect("node of a model cell");
+            v.extend(s..s + self.ndim);
+            for &b in &self.sets[n] {
+                v.extend(b..b + self.ndim);
+            }
+        }
+        v
+    }
+}
+
+/// Strain–displacement rows (engineering shear, Code_Aster's order) of a
+/// unit displacement along `i` with shape gradient `g`.
+fn b_col(ndim: usize, g: &[f64; 3], i: usize) -> [f64; 6] {
+    let mut b = [0.0; 6];
+    b[i] = g[i];
+    if ndim == 2 {
+        // xx yy zz xy
+        match i {
+            0 => b[3] = g[1],
+            _ => b[3] = g[0],
+        }
+    } else {
+        // xx yy zz xy xz yz
+        match i {
+            0 => {
+                b[3] = g[1];
+                b[4] = g[2];
+            }
+            1 => {
+                b[3] = g[0];
+                b[5] = g[2];
+            }
+            _ => {
+                b[4] = g[0];
+                b[5] = g[1];
+            }
+        }
+    }
+    b
+}
+
+fn inv(j: &[[f64; 3]; 3], dim: usize) -> Option<(f64, [[f64; 3]; 3])> {
+    let mut m = [[0.0; 3]; 3];
+    let det = if dim == 2 {
+        j[0][0] * j[1][1] - j[0][1] * j[1][0]
+    } else {
+        j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1]) - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
+            + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0])
+    };
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    if dim == 2 {
+        m[0][0] = j[1][1] / det;
+        m[0][1] = -j[0][1] / det;
+        m[1][0] = -j[1][0] / det;
+        m[1][1] = j[0][0] / det;
+    } else {
+        for (r, row) in m.iter_mut().enumerate() {
+            for (c, v) in row.iter_mut().enumerate() {
+                let (r1, r2) = ((c + 1) % 3, (c + 2) % 3);
+                let (c1, c2) = ((r + 1) % 3, (r + 2) % 3);
+                *v = (j[r1][c1] * j[r2][c2] - j[r1][c2] * j[r2][c1]) / det;
+            }
+        }
+    }
+    Some((det, m))
+}
+
+/// Shape gradients in real coordinates of a parent cell at ξ, and |det J|.
+pub fn real_gradients(t: CellType, coords: &[[f64; 3]], xi: &[f64; 3]) -> Option<(Vec<f64>, Vec<[f64; 3]>, f64)> {
+    let nno = t.nnodes();
+    let dim = t.dim();
+    let mut n = vec![0.0; nno];
+    let mut dref = vec![[0.0; 3]; nno];
+    shape_and_deriv(t, xi, &mut n, &mut dref);
+    let j = jacobian(t, coords, xi);
+    let (det, ij) = inv(&j, dim)?;
+    let g = dref
+        .iter()
+        .map(|d| {
+            let mut r = [0.0; 3];
+            for (i, ri) in r.iter_mut().enumerate().take(dim) {
+                *ri = (0..dim).map(|k| d[k] * ij[k][i]).sum();
+            }
+            r
+        })
+        .collect();
+    Some((n, g, det.abs()))
+}
+
+/// Bulk integration rule of sub-cells (`XINT`): 12 points (degree 6) on a
+/// triangle, 15 points (degree 5) on a tetrahedron.
+pub fn subcell_rule(dim: usize) -> QuadratureRule {
+    if dim == 2 {
+        rule_for_degree(RefDomain::Triangle, 6)
+    } else {
+        rule_for_degree(RefDomain::Tetrahedron, 5)
+    }
+}
+
+/// A bulk integration point of a cell: parent reference coordinates, weight
+/// (real measure) and region code.
+#[derive(Debug, Clone, Copy)]
+pub struct BulkPoint {
+    pub xi: [f64; 3],
+    pub w: f64,
+    pub region: i32,
+}
+
+/// The bulk integration points of an X-FEM cell: the sub-cell rule mapped
+/// through each sub-cell (defined in the parent's reference space) and the
+/// parent map.
+pub fn bulk_points(t: CellType, coords: &[[f64; 3]], xm: &XfemModel, cell: usize) -> Result<Vec<BulkPoint>, String> {
+    let xc = &xm.cells[&cell];
+    let dim = t.dim();
+    let st = XfemModel::subcell_type(dim);
+    let rule = subcell_rule(dim);
+    let nsub = st.nnodes();
+    let mut out = Vec::new();
+    let mut n = vec![0.0; nsub];
+    let mut d = vec![[0.0; 3]; nsub];
+    for (s, sc) in xc.cutting.subcells.iter().enumerate() {
+        let xis: Vec<[f64; 3]> = sc.nodes.iter().map(|&p| xc.cutting.points[p].xi).collect();
+        for (q, wq) in rule.points.iter().zip(&rule.weights) {
+            shape_and_deriv(st, q, &mut n, &mut d);
+            let mut xi = [0.0; 3];
+            let mut js = [[0.0; 3]; 3];
+            for k in 0..nsub {
+                for a in 0..dim {
+                    xi[a] += n[k] * xis[k][a];
+                    for b in 0..dim {
+                        js[a][b] += xis[k][a] * d[k][b];
+                    }
+                }
+            }
+            let (dets, _) = inv(&js, dim).ok_or_else(|| format!("degenerate sub-cell {} of the cut cell", s + 1))?;
+            let jp = jacobian(t, coords, &xi);
+            let (detp, _) = inv(&jp, dim).ok_or("degenerate parent cell")?;
+            out.push(BulkPoint { xi, w: wq * dets.abs() * detp.abs(), region: xc.regions[s] });
+        }
+    }
+    Ok(out)
+}
+
+/// Stiffness matrix of a cell on its unknowns ([`XDofs::cell_dofs`] order),
+/// row-major; `hooke` on engineering strains of `nsig` components.
+#[allow(clippy::too_many_arguments)]
+pub fn bulk_stiffness(
+    t: CellType,
+    coords: &[[f64; 3]],
+    nodes: &[usize],
+    xm: &XfemModel,
+    cell: usize,
+    hooke: &[[f64; 6]; 6],
+    nsig: usize,
+    ndim: usize,
+) -> Result<Vec<f64>, String> {
+    let points: Vec<BulkPoint> = if xm.cells.contains_key(&cell) {
+        bulk_points(t, coords, xm, cell)?
+    } else {
+        let rule = crate::fem::elasticity::rigi_rule(t);
+        let mut v = Vec::new();
+        for (q, w) in rule.points.iter().zip(&rule.weights) {
+            let (_, _, det) = real_gradients(t, coords, q).ok_or("degenerate cell")?;
+            v.push(BulkPoint { xi: *q, w: w * det, region: 0 });
+        }
+        v
+    };
+    // Columns: (node index in cell, factor selector) per unknown.
+    let mut cols: Vec<(usize, Option<usize>, usize)> = Vec::new(); // (local node, set, component)
+    for (a, &n) in nodes.iter().enumerate() {
+        for i in 0..ndim {
+            cols.push((a, None, i));
+        }
+        for j in 0..xm.node_sets[n].len() {
+            for i in 0..ndim {
+                cols.push((a, Some(j), i));
+            }
+        }
+    }
+    let nd = cols.len();
+    let mut k = vec![0.0; nd * nd];
+    let mut b = vec![[0.0; 6]; nd];
+    for p in &points {
+        let (_, g, _) = real_gradients(t, coords, &p.xi).ok_or("degenerate cell")?;
+        for (c, &(a, set, i)) in cols.iter().enumerate() {
+            let f = match set {
+                None => 1.0,
+                Some(j) => xm.psi(nodes[a], j, p.region),
+            };
+            b[c] = if f == 0.0 { [0.0; 6] } else { b_col(ndim, &g[a], i).map(|v| v * f) };
+        }
+        let db: Vec<[f64; 6]> = b
+            .iter()
+            .map(|bc| {
+                let mut r = [0.0; 6];
+                for (s, rs) in r.iter_mut().enumerate().take(nsig) {
+                    *rs = (0..nsig).map(|q| hooke[s][q] * bc[q]).sum();
+                }
+                r
+            })
+            .collect();
+        for r in 0..nd {
+            if b[r].iter().all(|v| *v == 0.0) {
+                continue;
+            }
+            for c in 0..nd {
+                let v: f64 = (0..nsig).map(|s| b[r][s] * db[c][s]).sum();
+                k[r * nd + c] += p.w * v;
+            }
+        }
+    }
+    Ok(k)
+}
+
+/// A facet of an interface inside a cell: a face of a sub-cell on the
+/// interface, seen from the slave (−) side.
+#[derive(Debug, Clone)]
+pub struct Facet {
+    pub cell: usize,
+    /// Parent reference coordinates of the facet's nodes (SEG3 / TRIA6 order).
+    pub xi: Vec<[f64; 3]>,
+    /// Global sign tuples of the slave and master sides.
+    pub slave: Vec<i32>,
+    pub master: Vec<i32>,
+}
+
+const TRIA6_EDGES: [[usize; 3]; 3] = [[0, 1, 3], [1, 2, 4], [2, 0, 5]];
+const TETRA10_FACES: [[usize; 6]; 4] = [[0, 1, 2, 4, 5, 6], [0, 1, 3, 4, 8, 7], [0, 2, 3, 6, 9, 7], [1, 2, 3, 5, 9, 8]];
+
+/// The facets of crack `g` (model index) in every X-FEM cell that sees it,
+/// in cell order. `tol` is a length: a point is on the interface when
+/// |φ| ≤ tol.
+pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
+    let mut out = Vec::new();
+    for (&c, xc) in &xm.cells {
+        let Some(p) = xc.cracks.iter().position(|&k| k == g) else { continue };
+        let t = mesh.cell_types[c];
+        let nodes = &mesh.cells[c];
+        for (s, sc) in xc.cutting.subcells.iter().enumerate() {
+            if sc.he[p] != -1 {
+                continue;
+            }
+            let faces: Vec<Vec<usize>> = if mesh.dim == 2 {
+                TRIA6_EDGES.iter().map(|e| e.to_vec()).collect()
+            } else {
+                TETRA10_FACES.iter().map(|f| f.to_vec()).collect()
+            };
+            for f in faces {
+                let pts: Vec<usize> = f.iter().map(|&l| sc.nodes[l]).collect();
+                if !pts.iter().all(|&q| xc.cutting.points[q].lsn[p].abs() <= tol) {
+                    continue;
+                }
+                let xi: Vec<[f64; 3]> = pts.iter().map(|&q| xc.cutting.points[q].xi).collect();
+                let slave = xc.signs[s].clone();
+                // Master side: the crack's sign flipped; branches of this
+                // crack exist on that side only where c·(+1) < 0.
+                let mut master = slave.clone();
+                master[g] = 1;
+                let centre = centroid(&xi, mesh.dim);
+                let ff = shape(t, &centre);
+                for (b, mb) in xm.masters.iter().enumerate() {
+                    if let Some((m, coef)) = mb {
+                        if *m == g {
+                            master[b] = if coef * 1.0 < 0.0 {
+                                let v: f64 = nodes.iter().zip(&ff).map(|(&n, f)| f * xm.lsn[b][n]).sum();
+                                if v < 0.0 {
+                                    -1
+                                } else {
+                                    1
+                                }
+                            } else {
+                                0
+                            };
+                        }
+                    }
+                }
+                out.push(Facet { cell: c, xi, slave, master });
+            }
+        }
+    }
+    out
+}
+
+fn centroid(xi: &[[f64; 3]], dim: usize) -> [f64; 3] {
+    let nv = dim; // vertices of a SEG3 (2) or TRIA6 (3)
+    let mut c = [0.0; 3];
+    for p in &xi[..nv] {
+        for k in 0..3 {
+            c[k] += p[k] / nv as f64;
+        }
+    }
+    c
+}
+
+/// Facet rule of CONTACT ZONE INTEGRATION='GAUSS' with ORDRE_INT (`xminte`):
+/// segments FPG2 (orders 1–2), FPG3 (3), FPG4 (≥ 4); triangles FPG3 (1–2),
+/// FPG4 (3), FPG6 (4), FPG7 (5).
+pub fn facet_rule(dim: usize, order: i64) -> Result<QuadratureRule, String> {
+    if dim == 2 {
+        let n = match order {
+            1 | 2 => 2,
+            3 => 3,
+            _ => 4,
+        };
+        Ok(gauss_legendre(n))
+    } else {
+        let name = match order {
+            1 | 2 => "FPG3",
+            3 => "FPG4",
+            4 => "FPG6",
+            5 => "FPG7",
+            _ => return Err(format!("ORDRE_INT={order} on triangular facets is not supported yet")),
+        };
+        aster_rule(CellType::Tria3, name).ok_or_else(|| format!("rule {name} is missing"))
+    }
+}
+
+/// A facet integration point.
+#[derive(Debug, Clone)]
+pub struct FacetPoint {
+    pub xi: [f64; 3],
+    pub w: f64,
+    /// Local basis rows: n, τ1 (, τ2).
+    pub basis: [[f64; 3]; 3],
+}
+
+/// Integration points of a facet with the local basis (`n = ∇φ/|∇φ|`,
+/// τ1 = e_x projected on the tangent plane (e_y if n ∥ e_x), τ2 = n × τ1).
+pub fn facet_points(
+    t: CellType,
+    coords: &[[f64; 3]],
+    nodes: &[usize],
+    lsn: &[f64],
+    facet: &Facet,
+    rule: &QuadratureRule,
+) -> Result<Vec<FacetPoint>, String> {
+    let dim = t.dim();
+    let ft = if dim == 2 { CellType::Seg3 } else { CellType::Tria6 };
+    let nf = ft.nnodes();
+    let mut n = vec![0.0; nf];
+    let mut d = vec![[0.0; 3]; nf];
+    let mut out = Vec::with_capacity(rule.len());
+    for (q, wq) in rule.points.iter().zip(&rule.weights) {
+        shape_and_deriv(ft, q, &mut n, &mut d);
+        let mut xi = [0.0; 3];
+        let mut tang = [[0.0; 3]; 2]; // dξ/ds_k
+        for k in 0..nf {
+            for a in 0..dim {
+                xi[a] += n[k] * facet.xi[k][a];
+                for (s, ts) in tang.iter_mut().enumerate().take(dim - 1) {
+                    ts[a] += facet.xi[k][a] * d[k][s];
+                }
+            }
+        }
+        let jp = jacobian(t, coords, &xi);
+        let real = |v: &[f64; 3]| -> [f64; 3] {
+            let mut r = [0.0; 3];
+            for (i, ri) in r.iter_mut().enumerate().take(dim) {
+                *ri = (0..dim).map(|k| jp[i][k] * v[k]).sum();
+            }
+            r
+        };
+        let measure = if dim == 2 {
+            let t0 = real(&tang[0]);
+            (t0[0] * t0[0] + t0[1] * t0[1]).sqrt()
+        } else {
+            let (a, b) = (real(&tang[0]), real(&tang[1]));
+            let c = cross(&a, &b);
+            dot(&c, &c).sqrt()
+        };
+        let (_, g, _) = real_gradients(t, coords, &xi).ok_or("degenerate cell")?;
+        let mut gn = [0.0; 3];
+        for (a, &nd) in nodes.iter().enumerate() {
+            for k in 0..3 {
+                gn[k] += lsn[nd] * g[a][k];
+            }
+        }
+        let norm = dot(&gn, &gn).sqrt();
+        if norm == 0.0 {
+            return Err("the level-set gradient vanishes on a facet".into());
+        }
+        let nrm = gn.map(|v| v / norm);
+        let mut t1 = [1.0 - nrm[0] * nrm[0], -nrm[0] * nrm[1], -nrm[0] * nrm[2]];
+        if dot(&t1, &t1).sqrt() < 1e-8 {
+            t1 = [-nrm[1] * nrm[0], 1.0 - nrm[1] * nrm[1], -nrm[1] * nrm[2]];
+        }
+        let l = dot(&t1, &t1).sqrt();
+        let t1 = t1.map(|v| v / l);
+        let t2 = if dim == 3 { cross(&nrm, &t1) } else { [0.0; 3] };
+        out.push(FacetPoint { xi, w: wq * measure, basis: [nrm, t1, t2] });
+    }
+    Ok(out)
+}
+
+pub fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+pub fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// The mortar coupling of one crack in one cell: `c` couples the cell's
+/// unknowns to the packets' μ (∫ (P[[N]])ᵀ Φ_k), `mm` the packets' w and μ
+/// (∫ Φ_k Φ_l), `m` the lumped weights (∫ Φ_k).
+#[derive(Debug, Clone)]
+pub struct Coupling {
+    pub cell: usize,
+    pub crack: usize,
+    /// Packets touched, in local order.
+    pub packets: Vec<usize>,
+    /// Row-major (n_cell_dofs × (npk·ndim)).
+    pub c: Vec<f64>,
+    /// npk × npk.
+    pub mm: Vec<f64>,
+    pub m: Vec<f64>,
+}
+
+/// The vertex functions of the multipliers of one crack in one cell: the
+/// linear vertex shape functions of active vertices, the inactive ones'
+/// shares spread equally over the active ones (`xmofhm`), summed per packet.
+fn multiplier_functions(lin: &[f64], active: &[Option<usize>], packets: &[usize]) -> Vec<f64> {
+    let nact = active.iter().filter(|a| a.is_some()).count() as f64;
+    let spare: f64 = lin.iter().zip(active).filter(|(_, a)| a.is_none()).map(|(v, _)| v).sum();
+    let mut phi = vec![0.0; packets.len()];
+    for (v, a) in lin.iter().zip(active) {
+        if let Some(k) = a {
+            let loc = packets.iter().position(|p| p == k).expect("packet of an active vertex");
+            phi[loc] += v + spare / nact;
+        }
+    }
+    phi
+}
+
+/// Build the couplings of crack `g` from its facets. `packet_of` maps a mesh
+/// node to its packet; `active_edges` are the crack's cut vertex edges (the
+/// active vertices of a cell are the ends of its edges in that set).
+#[allow(clippy::too_many_arguments)]
+pub fn couplings(
+    mesh: &Mesh,
+    xm: &XfemModel,
+    g: usize,
+    facets: &[Facet],
+    rule: &QuadratureRule,
+    packet_of: &BTreeMap<usize, usize>,
+    active_edges: &BTreeSet<(usize, usize)>,
+    ndim: usize,
+) -> Result<Vec<Coupling>, String> {
+    let mut by_cell: BTreeMap<usize, Vec<&Facet>> = BTreeMap::new();
+    for f in facets {
+        by_cell.entry(f.cell).or_default().push(f);
+    }
+    let mut out = Vec::new();
+    for (c, fs) in by_cell {
+        let t = mesh.cell_types[c];
+        let nodes = &mesh.cells[c];
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let vt = crate::fem::elasticity::vertex_type(t);
+        let nv = vt.nnodes();
+        // Active vertices: ends of cut edges of this cell.
+        let mut active: Vec<Option<usize>> = vec![None; nv];
+        for e in super::levelset::edges(t) {
+            let (a, b) = (nodes[e[0]], nodes[e[1]]);
+            if active_edges.contains(&(a.min(b), a.max(b))) {
+                for l in [e[0], e[1]] {
+                    let k = packet_of.get(&nodes[l]).ok_or_else(|| {
+                        format!("node {} of a cut edge belongs to no multiplier packet", mesh.node_names[nodes[l]])
+                    })?;
+                    active[l] = Some(*k);
+                }
+            }
+        }
+        if active.iter().all(|a| a.is_none()) {
+            // No cut edge here (the interface passes through vertices only):
+            // no multiplier lives on these facets.
+            continue;
+        }
+        let mut pk: Vec<usize> = active.iter().flatten().copied().collect();
+        pk.sort_unstable();
+        pk.dedup();
+        let npk = pk.len();
+        // Cell unknown layout (XDofs::cell_dofs order).
+        let mut cols: Vec<(usize, Option<usize>, usize)> = Vec::new();
+        for (a, &n) in nodes.iter().enumerate() {
+            for i in 0..ndim {
+                cols.push((a, None, i));
+            }
+            for j in 0..xm.node_sets[n].len() {
+                for i in 0..ndim {
+                    cols.push((a, Some(j), i));
+                }
+            }
+        }
+        let nd = cols.len();
+        let mut cm = vec![0.0; nd * npk * ndim];
+        let mut mm = vec![0.0; npk * npk];
+        let mut m = vec![0.0; npk];
+        let code = |s: &[i32]| super::levelset::region_code(s);
+        for f in fs {
+            let (rm, rp) = (code(&f.slave), code(&f.master));
+            for p in facet_points(t, &coords, nodes, &xm.lsn[g], f, rule)? {
+                let ff = shape(t, &p.xi);
+                let lin = shape(vt, &p.xi);
+                let phi = multiplier_functions(&lin, &active, &pk);
+                for k in 0..npk {
+                    m[k] += p.w * phi[k];
+                    for l in 0..npk {
+                        mm[k * npk + l] += p.w * phi[k] * phi[l];
+                    }
+                }
+                // Jump of each unknown, projected on the local basis.
+                for (r, &(a, set, i)) in cols.iter().enumerate() {
+                    let Some(j) = set else { continue };
+                    let n = nodes[a];
+                    let jc = xm.psi(n, j, rp) - xm.psi(n, j, rm);
+                    if jc == 0.0 {
+                        continue;
+                    }
+                    let v = ff[a] * jc;
+                    for k in 0..npk {
+                        for q in 0..ndim {
+                            cm[r * npk * ndim + k * ndim + q] += p.w * v * p.basis[q][i] * phi[k];
+                        }
+                    }
+                }
+            }
+        }
+        out.push(Coupling { cell: c, crack: g, packets: pk, c: cm, mm, m });
+    }
+    Ok(out)
+}
