@@ -380,6 +380,15 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let no = out_comps.len();
         let mut out = vec![f64::NAN; vm.mesh.nnodes() * no];
         let hcol = |j: usize, d: usize| idx(&format!("H{}{}", j + 1, ["X", "Y", "Z"][d]));
+        // A cell of each node (for the pressure at mid-side nodes).
+        let mut cell_of = vec![usize::MAX; mesh.nnodes()];
+        for (c, nodes) in mesh.cells.iter().enumerate() {
+            if mesh.cell_types[c].dim() == mesh.dim {
+                for &n in nodes {
+                    cell_of[n] = c;
+                }
+            }
+        }
         for (v, origin) in vm.origins.iter().enumerate() {
             let row = &mut out[v * no..(v + 1) * no];
             match origin {
@@ -390,7 +399,7 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                     if hm {
                         // The pressure is linear on the vertices: at a
                         // mid-side node, the value of the field there.
-                        row[ndim] = pressure_at_node(&mesh, values, nc, idx("PRE1").unwrap(), *n);
+                        row[ndim] = pressure_at_node(&mesh, cell_of[*n], values, nc, idx("PRE1").unwrap(), *n);
                     }
                 }
                 NodeOrigin::Xfem { parent, xi, he, .. } => {
@@ -438,23 +447,17 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 }
 
 /// The (linear) pressure at a mesh node: its own value at a vertex, the
-/// interpolation of a cell's vertices at a mid-side node.
-fn pressure_at_node(mesh: &crate::mesh::Mesh, values: &[f64], nc: usize, k: usize, n: usize) -> f64 {
+/// interpolation of the vertices of a cell `c` holding it at a mid-side node.
+fn pressure_at_node(mesh: &crate::mesh::Mesh, c: usize, values: &[f64], nc: usize, k: usize, n: usize) -> f64 {
     let v = values[n * nc + k];
-    if v.is_finite() {
+    if v.is_finite() || c == usize::MAX {
         return v;
     }
-    for (c, nodes) in mesh.cells.iter().enumerate() {
-        let t = mesh.cell_types[c];
-        if t.dim() != mesh.dim {
-            continue;
-        }
-        if let Some(l) = nodes.iter().position(|&m| m == n) {
-            let xi = crate::fem::reference::node_coords(t)[l];
-            let vt = crate::fem::elasticity::vertex_type(t);
-            let lin = crate::fem::reference::shape(vt, &xi);
-            return nodes.iter().zip(&lin).map(|(&m, f)| f * values[m * nc + k]).sum();
-        }
-    }
-    v
+    let t = mesh.cell_types[c];
+    let nodes = &mesh.cells[c];
+    let Some(l) = nodes.iter().position(|&m| m == n) else { return v };
+    let xi = crate::fem::reference::node_coords(t)[l];
+    let vt = crate::fem::elasticity::vertex_type(t);
+    let lin = crate::fem::reference::shape(vt, &xi);
+    nodes.iter().zip(&lin).map(|(&m, f)| f * values[m * nc + k]).sum()
 }

@@ -701,19 +701,12 @@ fn constraints(
                 ),
             )
         };
-        let vertices: BTreeSet<usize> = xd
-            .std
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| s.is_some())
-            .map(|(n, _)| n)
-            .filter(|&n| {
-                mesh.cells
-                    .iter()
-                    .zip(&mesh.cell_types)
-                    .any(|(nodes, t)| t.dim() == ndim && nodes[..t.nvertices()].contains(&n))
-            })
-            .collect();
+        let mut vertices: BTreeSet<usize> = BTreeSet::new();
+        for (nodes, t) in mesh.cells.iter().zip(&mesh.cell_types) {
+            if t.dim() == ndim {
+                vertices.extend(nodes[..t.nvertices()].iter().copied().filter(|&n| xd.std[n].is_some()));
+            }
+        }
         let mut n_h = 0;
         for &n in &vertices {
             if !fixed(n, "PRE1") {
