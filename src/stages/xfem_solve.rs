@@ -368,6 +368,10 @@ pub fn stat_non_line_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result
     let mut nfree = 0;
     let mut hm_report = String::new();
     let mut pinned = Vec::new();
+    // Largest reference force of the converged steps: the scale of the
+    // relative criterion once the forces vanish (a fully broken interface).
+    let mut ref_hist: f64 = 0.0;
+    let mut vanished_steps = Vec::new();
     for (n, &t) in times.iter().enumerate().skip(1) {
         let (cons, hydr, pins) = constraints(a, model, &mesh, &xm, &xd, &zones, t, ndim, hm, opts.nprec)?;
         if n == 1 {
@@ -443,10 +447,16 @@ pub fn stat_non_line_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result
                 }
             }
             let abs = inf_norm(&rf);
-            let rel = if reactions > 0.0 { abs / reactions } else { abs };
-            let converged = iters > 0
-                && resi_rela.map(|tol| rel <= tol).unwrap_or(true)
-                && resi_maxi.map(|tol| abs <= tol).unwrap_or(true);
+            let vanished = reactions <= 1e-6 * ref_hist;
+            let scale_ref = if vanished { ref_hist } else { reactions };
+            let rel = if scale_ref > 0.0 { abs / scale_ref } else { abs };
+            if converged_check(iters, rel, abs, resi_rela, resi_maxi) {
+                ref_hist = ref_hist.max(reactions);
+                if vanished {
+                    vanished_steps.push(n);
+                }
+            }
+            let converged = converged_check(iters, rel, abs, resi_rela, resi_maxi);
             if converged {
                 break (rel, abs);
             }
@@ -495,6 +505,26 @@ pub fn stat_non_line_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result
             );
             states[li] = ev.new_state;
         }
+        // The state of each cohesive interface: tractions, openings, damage, energy.
+        let mut zone_log = String::new();
+        for (zi, z) in zones.iter().enumerate() {
+            let (mut lmin, mut lmax, mut wmax, mut wmin) = (f64::MAX, f64::MIN, f64::MIN, f64::MAX);
+            let mut counts = [0usize; 3];
+            let mut energy = 0.0;
+            for (li, l) in laws.iter().enumerate().filter(|(_, l)| l.zone == zi) {
+                lmin = lmin.min(x[l.base]);
+                lmax = lmax.max(x[l.base]);
+                wmin = wmin.min(x[l.base + ndim]);
+                wmax = wmax.max(x[l.base + ndim]);
+                counts[states[li].state.min(2) as usize] += 1;
+                energy += l.m * z.params.dissipated_energy(states[li].kappa);
+            }
+            let _ = writeln!(
+                zone_log,
+                "        {}: lambda_n in [{lmin:.9e}, {lmax:.9e}], w_n in [{wmin:.9e}, {wmax:.9e}], sound/damaged/broken {}/{}/{}, dissipated {energy:.9e}",
+                xm.crack_names[z.crack], counts[0], counts[1], counts[2]
+            );
+        }
         let _ = writeln!(
             log,
             "  {n:>4}  {:>14}  {iters:>5}  {:>14}  {:>14}",
@@ -502,6 +532,7 @@ pub fn stat_non_line_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result
             crate::interp::format::sci(rel, 3, false),
             crate::interp::format::sci(abs, 3, false)
         );
+        log.push_str(&zone_log);
         steps.push(Step { nume_ordre: n as i64, inst: t, fields: depl_fields(&mesh, &xm, &xd, &x, hm) });
     }
 
@@ -535,6 +566,13 @@ pub fn stat_non_line_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result
     }
     for p in &pinned {
         let _ = writeln!(s, "    null mode : {p}");
+    }
+    if !vanished_steps.is_empty() {
+        let _ = writeln!(
+            s,
+            "    criterion : at steps {vanished_steps:?} the reactions vanished (below 1e-6 of the largest earlier one); \
+             RESI_GLOB_RELA was measured against the largest earlier reaction"
+        );
     }
     if iter_cont_maxi > 0 {
         let _ = writeln!(
@@ -845,4 +883,8 @@ fn equilibrate(k: &faer::sparse::SparseColMat<usize, f64>) -> (faer::sparse::Spa
     }
     let sym = faer::sparse::SymbolicSparseColMat::new_checked(n, n, colp, None, rows);
     (faer::sparse::SparseColMat::new(sym, vals), s)
+}
+
+fn converged_check(iters: usize, rel: f64, abs: f64, resi_rela: Option<f64>, resi_maxi: Option<f64>) -> bool {
+    iters > 0 && resi_rela.map(|tol| rel <= tol).unwrap_or(true) && resi_maxi.map(|tol| abs <= tol).unwrap_or(true)
 }
