@@ -478,6 +478,11 @@ pub(super) fn step_fields(p: &Problem, u: &[f64], with_sief: bool) -> Result<BTr
 }
 
 pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    if let Some(mo) = a.concept("MODELE") {
+        if model_of(&mo)?.xfem.is_some() {
+            return super::xfem_solve::meca_statique_xfem(ctx, a, &mo);
+        }
+    }
     // RESULTAT (adding a step to a result) and INST_FIN are not implemented.
     a.refuse(&["CARA_ELEM", "LIST_INST", "SENSIBILITE", "RESULTAT", "INST_FIN"])?;
     if let Some(o) = a.text("OPTION") {

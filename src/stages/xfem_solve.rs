@@ -88,7 +88,34 @@ fn direction(c: &str) -> Option<usize> {
     }
 }
 
+/// STAT_NON_LINE on an X-FEM model: the instants of INCREMENT, the initial
+/// state stored as order 0.
 pub fn stat_non_line_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result<Option<ConceptData>> {
+    let times = super::nonlinear::instants(a)?;
+    solve_xfem(ctx, a, model, times, "STAT_NON_LINE")
+}
+
+/// MECA_STATIQUE on an X-FEM model (no contact zone: the interfaces are free
+/// surfaces): one linear solve at INST (0 by default), stored as order 1.
+pub fn meca_statique_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result<Option<ConceptData>> {
+    a.refuse(&["CARA_ELEM", "LIST_INST", "SENSIBILITE", "RESULTAT", "INST_FIN"])?;
+    if let Some(o) = a.text("OPTION") {
+        if o != "SIEF_ELGA" && o != "SANS" {
+            return Err(a.err("OPTION", format!("OPTION='{o}' is not supported yet")));
+        }
+    }
+    let inst = a.reals("INST").first().copied().unwrap_or(0.0);
+    solve_xfem(ctx, a, model, vec![inst, inst], "MECA_STATIQUE")
+}
+
+fn solve_xfem(
+    ctx: &mut Ctx,
+    a: &Args,
+    model: &ConceptRef,
+    times: Vec<f64>,
+    command: &str,
+) -> Result<Option<ConceptData>> {
+    let statics = command == "MECA_STATIQUE";
     for kw in [
         "SOUS_STRUC",
         "ETAT_INIT",
@@ -128,6 +155,7 @@ pub fn stat_non_line_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result
     let modelisation = modelisations[0].clone();
     let (md, hm) = match modelisation.as_str() {
         "D_PLAN" => (Modelisation::DPlan, false),
+        "C_PLAN" => (Modelisation::CPlan, false),
         "D_PLAN_HM" => (Modelisation::DPlan, true),
         "3D" => (Modelisation::ThreeD, false),
         "3D_HM" => (Modelisation::ThreeD, true),
@@ -358,10 +386,13 @@ pub fn stat_non_line_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result
     let t_elements = t0.elapsed();
 
     // Instants.
-    let times = super::nonlinear::instants(a)?;
     let mut states: Vec<CzmState> = vec![CzmState::default(); laws.len()];
     let mut x = vec![0.0; xd.n];
-    let mut steps = vec![Step { nume_ordre: 0, inst: times[0], fields: depl_fields(&mesh, &xm, &xd, &x, hm) }];
+    let mut steps = if statics {
+        Vec::new()
+    } else {
+        vec![Step { nume_ordre: 0, inst: times[0], fields: depl_fields(&mesh, &xm, &xd, &x, hm) }]
+    };
     let mut log = String::new();
     let mut t_fact = Duration::ZERO;
     let mut t_asm = Duration::ZERO;
@@ -538,11 +569,15 @@ pub fn stat_non_line_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result
 
     // The run log: what was simulated, eliminated, and how.
     let mut s = String::new();
-    let _ = writeln!(s, "  STAT_NON_LINE on X-FEM model {} ({modelisation}):", model.label());
+    let _ = writeln!(s, "  {command} on X-FEM model {} ({modelisation}):", model.label());
     let _ = writeln!(
         s,
         "    simulated : {} elasticity, Heaviside enrichment by {} interface(s) ({})",
-        if ndim == 2 { "plane-strain" } else { "3D" },
+        match md {
+            Modelisation::DPlan => "plane-strain",
+            Modelisation::CPlan => "plane-stress",
+            _ => "3D",
+        },
         xm.cracks.len(),
         xm.crack_names.join(", ")
     );
