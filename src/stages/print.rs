@@ -20,6 +20,11 @@ fn num(v: f64) -> String {
 
 /// Print the result fields of one RESU occurrence.
 fn print_occurrence(occ: &Args, out: &mut String) -> Result<()> {
+    if let (Some(mc), false) = (occ.concept("MAILLAGE"), occ.has("RESULTAT")) {
+        let mesh = super::mesh::mesh_of(&mc)?;
+        print_mesh(&mesh, &mc.label(), out);
+        return Ok(());
+    }
     occ.refuse(&[
         "CHAM_GD",
         "MAILLAGE",
@@ -142,6 +147,51 @@ fn print_occurrence(occ: &Args, out: &mut String) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// A mesh in Code_Aster's text (ASTER) mesh format: coordinates, cells per
+/// type, groups of nodes and cells, each block closed by FINSF.
+fn print_mesh(mesh: &crate::mesh::Mesh, name: &str, out: &mut String) {
+    let _ = writeln!(out, "TITRE\n MAILLAGE {name}\nFINSF\n%");
+    let _ = writeln!(out, "COOR_{}D", mesh.dim);
+    for (n, x) in mesh.coords.iter().enumerate() {
+        let _ = write!(out, " {:<8}", mesh.node_names[n]);
+        for v in &x[..mesh.dim] {
+            let _ = write!(out, " {}", num(*v));
+        }
+        out.push('\n');
+    }
+    out.push_str("FINSF\n%\n");
+    for t in crate::mesh::CellType::ALL {
+        let cells: Vec<usize> = (0..mesh.ncells()).filter(|&c| mesh.cell_types[c] == t).collect();
+        if cells.is_empty() {
+            continue;
+        }
+        let _ = writeln!(out, "{}", t.name());
+        for c in cells {
+            let _ = write!(out, " {:<8}", mesh.cell_names[c]);
+            for &n in &mesh.cells[c] {
+                let _ = write!(out, " {}", mesh.node_names[n]);
+            }
+            out.push('\n');
+        }
+        out.push_str("FINSF\n%\n");
+    }
+    for (g, nodes) in &mesh.node_groups {
+        let _ = writeln!(out, "GROUP_NO\n {g}");
+        for &n in nodes {
+            let _ = writeln!(out, " {}", mesh.node_names[n]);
+        }
+        out.push_str("FINSF\n%\n");
+    }
+    for (g, cells) in &mesh.cell_groups {
+        let _ = writeln!(out, "GROUP_MA\n {g}");
+        for &c in cells {
+            let _ = writeln!(out, " {}", mesh.cell_names[c]);
+        }
+        out.push_str("FINSF\n%\n");
+    }
+    out.push_str("FIN\n");
 }
 
 /// IMPR_RESU with FORMAT='RESULTAT'.
