@@ -51,16 +51,10 @@ pub(super) fn instants(a: &Args) -> Result<Vec<f64>> {
     Ok(list[first..=last].to_vec())
 }
 
-pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    if let Some(mo) = a.concept("MODELE") {
-        if super::model::model_of(&mo)?.xfem.is_some() {
-            return super::xfem_solve::stat_non_line_xfem(ctx, a, &mo);
-        }
-    }
-    for kw in [
-        "CONTACT",
+/// STAT_NON_LINE keywords no driver implements yet, and METHODE other than NEWTON.
+pub(super) fn refuse_unsupported_options(a: &Args) -> Result<()> {
+    a.refuse(&[
         "SOUS_STRUC",
-        "SCHEMA_THM",
         "ETAT_INIT",
         "RECH_LINEAIRE",
         "PILOTAGE",
@@ -70,14 +64,21 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         "ENERGIE",
         "CRIT_STAB",
         "RESULTAT",
-    ] {
-        if a.given(kw) {
-            return Err(a.err(kw, "not supported yet"));
-        }
-    }
+    ])?;
     if a.text("METHODE").is_some_and(|m| m != "NEWTON") {
         return Err(a.err("METHODE", "only METHODE='NEWTON' is supported yet"));
     }
+    Ok(())
+}
+
+pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    if let Some(mo) = a.concept("MODELE") {
+        if super::model::model_of(&mo)?.xfem.is_some() {
+            return super::xfem_solve::stat_non_line_xfem(ctx, a, &mo);
+        }
+    }
+    a.refuse(&["CONTACT", "SCHEMA_THM"])?;
+    refuse_unsupported_options(a)?;
     for occ in a.facts("COMPORTEMENT") {
         let rel = occ.text("RELATION").unwrap_or("ELAS");
         if rel != "ELAS" {

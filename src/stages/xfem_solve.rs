@@ -116,24 +116,8 @@ fn solve_xfem(
     command: &str,
 ) -> Result<Option<ConceptData>> {
     let statics = command == "MECA_STATIQUE";
-    for kw in [
-        "SOUS_STRUC",
-        "ETAT_INIT",
-        "RECH_LINEAIRE",
-        "PILOTAGE",
-        "OBSERVATION",
-        "SUIVI_DDL",
-        "CRIT_QUALITE",
-        "ENERGIE",
-        "CRIT_STAB",
-        "RESULTAT",
-    ] {
-        if a.given(kw) {
-            return Err(a.err(kw, "not supported yet"));
-        }
-    }
-    if a.text("METHODE").is_some_and(|m| m != "NEWTON") {
-        return Err(a.err("METHODE", "only METHODE='NEWTON' is supported yet"));
+    if !statics {
+        super::nonlinear::refuse_unsupported_options(a)?;
     }
     let t_start = Instant::now();
     let (mesh, xm, elements) = {
