@@ -202,8 +202,20 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
             .map_err(|e| a.err("FISSURE", format!("cutting cell {}: {e}", mesh.cell_names[c])))?;
         cuttings.insert(c, (seen, cut));
     }
-    let xm = XfemModel::new(&mesh, &model_cells, cracks.clone(), names, lsn, masters, enriched, contact, cuttings)
-        .map_err(|e| a.err("FISSURE", e))?;
+    let pretraitements = a.text("PRETRAITEMENTS").unwrap_or("AUTO");
+    let xm = XfemModel::new(
+        &mesh,
+        &model_cells,
+        cracks.clone(),
+        names,
+        lsn,
+        masters,
+        enriched,
+        contact,
+        cuttings,
+        pretraitements,
+    )
+    .map_err(|e| a.err("FISSURE", e))?;
     let nsub: usize = xm.cells.values().map(|c| c.cutting.subcells.len()).sum();
     let ncut = xm.cells.values().filter(|c| {
         let mut r = c.regions.clone();
@@ -217,6 +229,14 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
     let _ = writeln!(s, "    sub-cells                            : {nsub}");
     let enr = xm.node_sets.iter().filter(|v| !v.is_empty()).count();
     let _ = writeln!(s, "    nodes with Heaviside sets            : {enr} ({} sets)", xm.n_sets());
+    if !xm.dropped_sets.is_empty() {
+        let worst = xm.dropped_sets.iter().map(|d| d.2).fold(0.0, f64::max);
+        let _ = writeln!(
+            s,
+            "    sets removed (sliver regions)        : {} (stiffness share at most {worst:.2e}; PRETRAITEMENTS='{pretraitements}')",
+            xm.dropped_sets.len()
+        );
+    }
     ctx.io.mess(&s);
     Ok(Some(ConceptData::Model(Model { mesh, mesh_concept, elements, xfem: Some(Rc::new(xm)) })))
 }

@@ -315,18 +315,39 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
         let Some(p) = xc.cracks.iter().position(|&k| k == g) else { continue };
         let t = mesh.cell_types[c];
         let nodes = &mesh.cells[c];
+        let faces: Vec<Vec<usize>> = if mesh.dim == 2 {
+            TRIA6_EDGES.iter().map(|e| e.to_vec()).collect()
+        } else {
+            TETRA10_FACES.iter().map(|f| f.to_vec()).collect()
+        };
+        // Vertex sets of the faces of the master-side sub-cells (he = +1).
+        let key = |sc: &super::topose::SubCell, f: &[usize]| -> Vec<usize> {
+            let mut k: Vec<usize> = f[..mesh.dim].iter().map(|&l| sc.nodes[l]).collect();
+            k.sort_unstable();
+            k
+        };
+        let master_faces: std::collections::BTreeSet<Vec<usize>> = xc
+            .cutting
+            .subcells
+            .iter()
+            .filter(|sc| sc.he[p] == 1)
+            .flat_map(|sc| faces.iter().map(move |f| key(sc, f)))
+            .collect();
         for (s, sc) in xc.cutting.subcells.iter().enumerate() {
             if sc.he[p] != -1 {
                 continue;
             }
-            let faces: Vec<Vec<usize>> = if mesh.dim == 2 {
-                TRIA6_EDGES.iter().map(|e| e.to_vec()).collect()
-            } else {
-                TETRA10_FACES.iter().map(|f| f.to_vec()).collect()
-            };
-            for f in faces {
+            for f in &faces {
                 let pts: Vec<usize> = f.iter().map(|&l| sc.nodes[l]).collect();
-                if !pts.iter().all(|&q| xc.cutting.points[q].lsn[p].abs() <= tol) {
+                // A face is on the interface when a master-side sub-cell of
+                // the cell shares it (the interface inside the parent), or
+                // when its vertices are on the level set (an interface along
+                // the parent's boundary). Only vertices are tested: on a
+                // curved interface (level set snapped by xajuls, mid-nodes
+                // moved by xmilfa) the points of a face, and a junction point
+                // found on a curved sub-edge, are only near the zero set.
+                let shared = master_faces.contains(&key(sc, f));
+                if !shared && !pts[..mesh.dim].iter().all(|&q| xc.cutting.points[q].lsn[p].abs() <= tol) {
                     continue;
                 }
                 let xi: Vec<[f64; 3]> = pts.iter().map(|&q| xc.cutting.points[q].xi).collect();
@@ -439,14 +460,15 @@ pub fn facet_points(
             }
             r
         };
-        let measure = if dim == 2 {
+        // Geometric normal of the facet (not yet oriented) and its measure.
+        let geo = if dim == 2 {
             let t0 = real(&tang[0]);
-            (t0[0] * t0[0] + t0[1] * t0[1]).sqrt()
+            [t0[1], -t0[0], 0.0]
         } else {
             let (a, b) = (real(&tang[0]), real(&tang[1]));
-            let c = cross(&a, &b);
-            dot(&c, &c).sqrt()
+            cross(&a, &b)
         };
+        let measure = dot(&geo, &geo).sqrt();
         let (_, g, _) = real_gradients(t, coords, &xi).ok_or("degenerate cell")?;
         let mut gn = [0.0; 3];
         for (a, &nd) in nodes.iter().enumerate() {
@@ -454,11 +476,16 @@ pub fn facet_points(
                 gn[k] += lsn[nd] * g[a][k];
             }
         }
-        let norm = dot(&gn, &gn).sqrt();
-        if norm == 0.0 {
-            return Err("the level-set gradient vanishes on a facet".into());
+        if dot(&gn, &gn) == 0.0 || measure == 0.0 {
+            return Err("degenerate facet (zero measure or level-set gradient)".into());
         }
-        let nrm = gn.map(|v| v / norm);
+        // The facet's own normal, oriented by ∇φ (from the − to the + side):
+        // the interface term then closes the divergence theorem of the
+        // sub-cells exactly, also where the discrete interface is curved
+        // (level sets adjusted near nodes). On a flat facet it is ∇φ/|∇φ|,
+        // Code_Aster's normal.
+        let sgn = if dot(&geo, &gn) < 0.0 { -1.0 } else { 1.0 };
+        let nrm = geo.map(|v| sgn * v / measure);
         let mut t1 = [1.0 - nrm[0] * nrm[0], -nrm[0] * nrm[1], -nrm[0] * nrm[2]];
         if dot(&t1, &t1).sqrt() < 1e-8 {
             t1 = [-nrm[1] * nrm[0], 1.0 - nrm[1] * nrm[1], -nrm[1] * nrm[2]];
@@ -512,7 +539,7 @@ fn multiplier_functions(lin: &[f64], active: &[Option<usize>], packets: &[usize]
 }
 
 /// Build the couplings of crack `g` from its facets. `packet_of` maps a mesh
-/// node to its packet; `active_edges` are the crack's cut vertex edges (the
+/// node to its packet; `active_edges` are the crack's cut vertex edges, and (v, v) for its vertex points (the
 /// active vertices of a cell are the ends of its edges in that set).
 #[allow(clippy::too_many_arguments)]
 pub fn couplings(
@@ -536,8 +563,15 @@ pub fn couplings(
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
         let vt = crate::fem::elasticity::vertex_type(t);
         let nv = vt.nnodes();
-        // Active vertices: ends of cut edges of this cell.
+        // Active vertices (`xmulhm`): ends of cut edges of this cell, and
+        // vertices where the interface passes (vertex points, listed as
+        // degenerate edges (v, v)).
         let mut active: Vec<Option<usize>> = vec![None; nv];
+        for (l, &n) in nodes[..nv].iter().enumerate() {
+            if active_edges.contains(&(n, n)) {
+                active[l] = packet_of.get(&n).copied();
+            }
+        }
         for e in super::levelset::edges(t) {
             let (a, b) = (nodes[e[0]], nodes[e[1]]);
             if active_edges.contains(&(a.min(b), a.max(b))) {

@@ -52,6 +52,59 @@ pub struct XfemModel {
     pub node_region: Vec<i32>,
     /// Enrichment sets of every node: the region codes, in set order.
     pub node_sets: Vec<Vec<i32>>,
+    /// Enrichment sets removed by the stiffness criterion of `xstan2`
+    /// ([`XfemModel::drop_stiffless_sets`]): (node, region code, criterion).
+    pub dropped_sets: Vec<(usize, i32, f64)>,
+}
+
+/// The smallest stiffness share a Heaviside set may have (a floor on
+/// Code_Aster's `xcodec` thresholds).
+pub const MIN_SHARE: f64 = 1e-8;
+
+/// Thresholds of `xstan2` (`xcodec`, PRETRAITEMENTS): per dimension, for
+/// vertex nodes and for mid-side nodes; the criterion is compared with their
+/// power `ndim`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SetCriterion {
+    pub vertex: f64,
+    pub middle: f64,
+    /// At least one crack of the model has a crack tip (`exi_fiss`): the
+    /// quadratic correction of `xcrvol` applies.
+    pub with_tips: bool,
+}
+
+impl SetCriterion {
+    /// `xcodec`'s values for PRETRAITEMENTS='AUTO' | 'FORCE' | 'SANS' on a
+    /// quadratic (`quadratic`) or linear model.
+    pub fn new(pretraitements: &str, quadratic: bool, with_tips: bool) -> Option<SetCriterion> {
+        let (vertex, middle) = match pretraitements {
+            "AUTO" if quadratic && with_tips => (1e-6, 1e-4),
+            "AUTO" if quadratic => (1e-6, 1e-5),
+            "AUTO" | "FORCE" => (1e-8, 1e-5),
+            "SANS" => (1e-4, 1e-4),
+            _ => return None,
+        };
+        Some(SetCriterion { vertex, middle, with_tips })
+    }
+}
+
+/// Vertex lists of the primary simplices of an uncut parent (`xdivte`, first
+/// configuration), 0-based.
+fn primary_simplices(t: CellType) -> Vec<Vec<usize>> {
+    match t {
+        CellType::Quad8 | CellType::Quad4 | CellType::Quad9 => vec![vec![0, 1, 3], vec![1, 2, 3]],
+        CellType::Tria3 | CellType::Tria6 => vec![vec![0, 1, 2]],
+        CellType::Tetra4 | CellType::Tetra10 => vec![vec![0, 1, 2, 3]],
+        CellType::Hexa8 | CellType::Hexa20 | CellType::Hexa27 => vec![
+            vec![5, 2, 1, 3],
+            vec![3, 4, 0, 1],
+            vec![1, 4, 5, 3],
+            vec![4, 3, 7, 5],
+            vec![2, 5, 6, 7],
+            vec![2, 7, 3, 5],
+        ],
+        _ => Vec::new(),
+    }
 }
 
 fn sign(v: f64) -> i32 {
@@ -118,6 +171,7 @@ impl XfemModel {
         enriched: Vec<Vec<bool>>,
         contact: String,
         cuttings: BTreeMap<usize, (Vec<usize>, Cutting)>,
+        pretraitements: &str,
     ) -> Result<XfemModel, String> {
         let nn = mesh.nnodes();
         let lsn_refs: Vec<&[f64]> = lsn.iter().map(|v| v.as_slice()).collect();
@@ -190,7 +244,151 @@ impl XfemModel {
             }
             node_sets[n] = others.into_iter().map(|(_, r)| r).collect();
         }
-        Ok(XfemModel { cracks, crack_names, lsn, masters, enriched, contact, cells, node_region, node_sets })
+        let mut xm = XfemModel {
+            cracks,
+            crack_names,
+            lsn,
+            masters,
+            enriched,
+            contact,
+            cells,
+            node_region,
+            node_sets,
+            dropped_sets: Vec::new(),
+        };
+        // MODI_MODELE_XFEM's PRETRAITEMENTS (default 'AUTO').
+        let quadratic = model_cells.iter().any(|&c| mesh.cell_types[c].nnodes() > mesh.cell_types[c].nvertices());
+        let with_tips =
+            xm.cracks.iter().any(|c| super::crack_of(c).map(|k| k.discontinuity == "FISSURE").unwrap_or(false));
+        if let Some(crit) = SetCriterion::new(pretraitements, quadratic, with_tips) {
+            xm.drop_stiffless_sets(mesh, model_cells, &crit);
+        }
+        Ok(xm)
+    }
+
+    /// The stiffness share of node `n`'s enrichment by region `r` over its
+    /// support (`xcrvol`): Σ over the sub-cells of region `r` of
+    /// |sub-cell|·(max |∂N_n/∂x|)² — the derivative taken at the sub-cell's
+    /// barycentre, and on a quadratic parent also half-way between it and
+    /// each vertex — divided by the same sum over every sub-cell of the
+    /// support (uncut cells count their primary simplices). With crack tips
+    /// on a quadratic parent each term is multiplied once more by the
+    /// sub-cell's weighted measure, as `xcrvol` does (its `3/ndim` is an
+    /// integer division).
+    pub fn set_criterion(&self, mesh: &Mesh, support: &[usize], n: usize, r: i32, with_tips: bool) -> f64 {
+        let dim = mesh.dim;
+        let (mut vhea, mut vtot) = (0.0, 0.0);
+        for &c in support {
+            let t = mesh.cell_types[c];
+            let nodes = &mesh.cells[c];
+            let Some(loc) = nodes.iter().position(|&m| m == n) else { continue };
+            let coords: Vec<[f64; 3]> = nodes.iter().map(|&m| mesh.coords[m]).collect();
+            let quadratic = t.nnodes() > t.nvertices();
+            // (vertices in reference coordinates, region) of each simplex.
+            let simplices: Vec<(Vec<[f64; 3]>, i32)> = match self.cells.get(&c) {
+                Some(xc) => xc
+                    .cutting
+                    .subcells
+                    .iter()
+                    .zip(&xc.regions)
+                    .map(|(sc, &reg)| (sc.nodes[..=dim].iter().map(|&p| xc.cutting.points[p].xi).collect(), reg))
+                    .collect(),
+                None => {
+                    let xi = crate::fem::reference::node_coords(t);
+                    let reg = self.node_region[nodes[0]];
+                    primary_simplices(t).iter().map(|v| (v.iter().map(|&k| xi[k]).collect(), reg)).collect()
+                }
+            };
+            for (vx, reg) in simplices {
+                let real: Vec<[f64; 3]> =
+                    vx.iter().map(|xi| crate::fem::reference::map_to_real(t, &coords, xi)).collect();
+                let d = |k: usize, j: usize| real[0][j] - real[k + 1][j];
+                let mut vse = if dim == 2 {
+                    (d(0, 0) * d(1, 1) - d(1, 0) * d(0, 1)).abs() / 2.0
+                } else {
+                    (d(0, 0) * (d(1, 1) * d(2, 2) - d(2, 1) * d(1, 2))
+                        - d(1, 0) * (d(0, 1) * d(2, 2) - d(2, 1) * d(0, 2))
+                        + d(2, 0) * (d(0, 1) * d(1, 2) - d(1, 1) * d(0, 2)))
+                    .abs()
+                        / 6.0
+                };
+                let mut bary = [0.0; 3];
+                for p in &vx {
+                    for (b, v) in bary.iter_mut().zip(p) {
+                        *b += v / vx.len() as f64;
+                    }
+                }
+                let mut pts = vec![bary];
+                if quadratic {
+                    pts.extend(vx.iter().map(|p| [0, 1, 2].map(|j| (bary[j] + p[j]) / 2.0)));
+                }
+                let mut deriv: f64 = 0.0;
+                for xi in &pts {
+                    if let Some((_, g, _)) = super::discrete::real_gradients(t, &coords, xi) {
+                        deriv = g[loc][..dim].iter().fold(deriv, |m, v| m.max(v.abs()));
+                    }
+                }
+                vse *= deriv * deriv;
+                if quadratic && with_tips {
+                    vse *= vse;
+                }
+                if reg == r {
+                    vhea += vse;
+                }
+                vtot += vse;
+            }
+        }
+        if vtot > 0.0 {
+            vhea / vtot
+        } else {
+            0.0
+        }
+    }
+
+    /// Remove the enrichment sets whose stiffness share over the node's
+    /// support ([`XfemModel::set_criterion`]) is below the threshold of
+    /// `xstan2` (`crit.vertex^ndim` at a vertex, `crit.middle^ndim` at a
+    /// mid-side node): Code_Aster sets the node status to 0 for such a set,
+    /// "to avoid zero pivots and ill-conditioning". A set whose region is a
+    /// sliver of the support adds a near-null direction to the system (its
+    /// stiffness, and its share of the interface, vanish with the sliver)
+    /// while it can only carry a displacement of the sliver's size.
+    pub fn drop_stiffless_sets(&mut self, mesh: &Mesh, model_cells: &[usize], crit: &SetCriterion) {
+        let nn = mesh.nnodes();
+        let mut support: Vec<Vec<usize>> = vec![Vec::new(); nn];
+        let mut middle = vec![false; nn];
+        for &c in model_cells {
+            let t = mesh.cell_types[c];
+            for (k, &n) in mesh.cells[c].iter().enumerate() {
+                support[n].push(c);
+                if k >= t.nvertices() {
+                    middle[n] = true;
+                }
+            }
+        }
+        let dim = mesh.dim as i32;
+        for n in 0..nn {
+            if self.node_sets[n].is_empty() {
+                continue;
+            }
+            let threshold = if middle[n] { crit.middle.powi(dim) } else { crit.vertex.powi(dim) };
+            // Our floor (docs/xfem-small-subcells.md): below a share of 1e-8
+            // the set's unknown is fixed only to ε/share of the solution's
+            // scale, and any inexact load on it (a facet rule on a curved
+            // facet) makes it of the order of the solution.
+            let threshold = threshold.max(MIN_SHARE);
+            let sets = self.node_sets[n].clone();
+            let mut kept = Vec::with_capacity(sets.len());
+            for r in sets {
+                let v = self.set_criterion(mesh, &support[n], n, r, crit.with_tips);
+                if v < threshold {
+                    self.dropped_sets.push((n, r, v));
+                } else {
+                    kept.push(r);
+                }
+            }
+            self.node_sets[n] = kept;
+        }
     }
 
     /// ψ of node `n`'s set `j` in region `r`.

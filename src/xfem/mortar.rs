@@ -250,6 +250,35 @@ pub fn cut_edges(mesh: &Mesh, cells: &[usize], lsn: &[f64], master: Option<(&[f6
             out.push(CutEdge { a, b, point });
         }
     }
+    // Vertex points: a vertex of a contact cell where φ = 0 is an
+    // intersection point with no edge (`ia = 0` in TOPOFAC.AI). `xlagsp`
+    // lists no edge for it, but `xmulhm` activates the vertex, so it carries
+    // interface unknowns of its own: it is listed as the degenerate edge
+    // (v, v), after the cut edges, once. A branch's vertex point beyond the
+    // junction (c·φ_master ≥ 0) is not one of the branch's.
+    let mut vertex_points: Vec<CutEdge> = Vec::new();
+    for &cell in cells {
+        let t = mesh.cell_types[cell];
+        let nodes = &mesh.cells[cell];
+        let nv = t.nvertices();
+        let (lo, hi) = nodes[..nv].iter().fold((f64::MAX, -f64::MAX), |(l, h), &n| (l.min(lsn[n]), h.max(lsn[n])));
+        if lo * hi >= 0.0 {
+            // No sign change over the cell: no facet crosses it.
+            continue;
+        }
+        for &v in &nodes[..nv] {
+            if lsn[v] != 0.0 || vertex_points.iter().any(|e| e.a == v) {
+                continue;
+            }
+            if let Some((phi, c)) = master {
+                if c * phi[v] >= 0.0 {
+                    continue;
+                }
+            }
+            vertex_points.push(CutEdge { a: v, b: v, point: mesh.coords[v] });
+        }
+    }
+    out.extend(vertex_points);
     out
 }
 
@@ -291,7 +320,11 @@ pub fn criteria(edges: &[CutEdge]) -> Vec<f64> {
 
 /// Select the vital edges among the cut edges (`xrell2`, algorithm 2) and
 /// group the nodes into packets.
-pub fn vital_edges(edges: &[CutEdge]) -> Packets {
+pub fn vital_edges(all: &[CutEdge]) -> Packets {
+    // Degenerate edges (vertex points, see [`cut_edges`]) carry no relation:
+    // each makes a packet of its own, numbered after the edge packets.
+    let edges: Vec<CutEdge> = all.iter().filter(|e| e.a != e.b).copied().collect();
+    let edges = edges.as_slice();
     let crit = criteria(edges);
     let mut score: BTreeMap<usize, usize> = BTreeMap::new();
     for e in edges {
@@ -367,6 +400,12 @@ pub fn vital_edges(edges: &[CutEdge]) -> Packets {
     for (n, p) in packet_of_node.iter_mut() {
         *p = order.iter().position(|q| q == p).unwrap();
         packets[*p].push(*n);
+    }
+    for e in all.iter().filter(|e| e.a == e.b) {
+        if let std::collections::btree_map::Entry::Vacant(v) = packet_of_node.entry(e.a) {
+            v.insert(packets.len());
+            packets.push(vec![e.a]);
+        }
     }
     Packets { vital, packet_of_node, packets }
 }

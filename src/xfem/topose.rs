@@ -394,39 +394,114 @@ impl Ctx<'_> {
         Ok(Decoupe { cut, inter, npts, mil })
     }
 
-    /// Crossing point of crack `ifiss` on a quadratic sub-edge (`xinter`).
+    /// Crossing point of crack `ifiss` on a quadratic sub-edge (`xinter`):
+    /// the root of the quadratic interpolation of the sub-edge values starts
+    /// a Newton solve of φ(ξ(s)) = 0 along the (possibly curved) sub-edge
+    /// ξ(s), φ the parent interpolation of the nodal level set (`xnewto`,
+    /// `xdelt0`). The sub-edge is curved, or the nodal values are not those of
+    /// a linear field, when `xajuls` snapped a value to zero or `xmilfa` moved
+    /// a mid-node of a flat sub-triangle.
     #[allow(clippy::too_many_arguments)]
     fn xinter(&self, na: u32, nb: u32, nm: u32, la: f64, lb: f64, lm: f64, ifiss: usize) -> Result<Pt, String> {
         let pa = self.pt(na, &[], &[])?.xi;
         let pb = self.pt(nb, &[], &[])?.xi;
         let pm = self.pt(nm, &[], &[])?.xi;
-        let a = (la + lb - 2.0 * lm) / 2.0;
         if (la - lb).abs() <= 0.0 {
             return Err("TOPOSE: equal level sets at the ends of a cut edge".into());
         }
-        if a.abs() >= 1e-8 {
-            return Err(format!(
-                "TOPOSE: the level set is not linear along a sub-edge (quadratic coefficient {a:.3e}): \
-                 the curved-interface branch of xinter (quadratic root + Newton) is not supported"
-            ));
-        }
-        let k = la / (la - lb);
-        let (wa, wm, wb) = (2.0 * (1.0 - k) * (0.5 - k), 4.0 * k * (1.0 - k), 2.0 * k * (k - 0.5));
-        let xi = [0, 1, 2].map(|j| wa * pa[j] + wm * pm[j] + wb * pb[j]);
+        let (a, b, c) = ((la + lb - 2.0 * lm) / 2.0, (lb - la) / 2.0, lm);
+        let s0 = if a.abs() < 1e-8 {
+            la / (la - lb)
+        } else {
+            let disc = b * b - 4.0 * a * c;
+            if disc < 0.0 {
+                return Err("TOPOSE: xinter: no root of the level set on a cut sub-edge".into());
+            }
+            let mut x = (-b - disc.sqrt()) / (2.0 * a);
+            if x.abs() > 1.0 {
+                x = (-b + disc.sqrt()) / (2.0 * a);
+            }
+            if x.abs() > 1.0 {
+                return Err("TOPOSE: xinter: the root of the level set is off the sub-edge".into());
+            }
+            (x + 1.0) / 2.0
+        };
+        let curve = |s: f64| -> ([f64; 3], [f64; 3]) {
+            let (wa, wm, wb) = (2.0 * (1.0 - s) * (0.5 - s), 4.0 * s * (1.0 - s), 2.0 * s * (s - 0.5));
+            let (da, dm, db) = (4.0 * s - 3.0, 4.0 - 8.0 * s, 4.0 * s - 1.0);
+            (
+                [0, 1, 2].map(|j| wa * pa[j] + wm * pm[j] + wb * pb[j]),
+                [0, 1, 2].map(|j| da * pa[j] + dm * pm[j] + db * pb[j]),
+            )
+        };
+        let s = self.newton(s0, (0.0, 1.0), curve, ifiss).unwrap_or(s0);
+        let xi = curve(s).0;
         self.check_on_crack(&xi, ifiss, "xinter")?;
         Ok(self.to_real(xi))
     }
 
-    /// The Newton solves of Code_Aster (xnewto) start from a point that,
-    /// for a straight interface in an affine cell, already lies on it; a
-    /// start point off the interface means a case that is not reproduced.
+    /// Value and gradient (reference coordinates) of crack `ifiss`'s level
+    /// set, parent interpolation.
+    fn lsn_grad(&self, xi: &[f64; 3], ifiss: usize) -> (f64, [f64; 3]) {
+        let nn = self.t.nnodes();
+        let mut n = vec![0.0; nn];
+        let mut dn = vec![[0.0; 3]; nn];
+        crate::fem::reference::shape_and_deriv(self.t, xi, &mut n, &mut dn);
+        let mut v = 0.0;
+        let mut g = [0.0; 3];
+        for k in 0..nn {
+            v += n[k] * self.lsn[ifiss][k];
+            for (gj, dj) in g.iter_mut().zip(&dn[k]) {
+                *gj += dj * self.lsn[ifiss][k];
+            }
+        }
+        (v, g)
+    }
+
+    /// Newton solve of φ(ξ(s)) = 0 on a parametrised line or curve
+    /// (`xnewto` with `xdelt0`): at least 3 and at most 100 iterations,
+    /// relative increment 1e-9 (absolute 1e-11 near s = 0); an iterate
+    /// leaving `bounds` is pulled back half-way to the bound (the Dekker
+    /// safeguard). None when it does not converge.
+    fn newton(
+        &self,
+        s0: f64,
+        bounds: (f64, f64),
+        curve: impl Fn(f64) -> ([f64; 3], [f64; 3]),
+        ifiss: usize,
+    ) -> Option<f64> {
+        const EPSMAX: f64 = 1e-9;
+        let mut s = s0;
+        for iter in 1..=100 {
+            let (xi, dxi) = curve(s);
+            let (v, g) = self.lsn_grad(&xi, ifiss);
+            let dv = dot(&g, &dxi);
+            if dv == 0.0 || !dv.is_finite() {
+                return None;
+            }
+            let delta = v / dv;
+            s -= delta;
+            if s > bounds.1 {
+                s = (s + delta + bounds.1) / 2.0;
+            } else if s < bounds.0 {
+                s = (s + delta + bounds.0) / 2.0;
+            }
+            let (refe, eps) = if s * s <= EPSMAX { (1.0, EPSMAX / 100.0) } else { (s * s, EPSMAX) };
+            if iter >= 3 && (delta * delta / refe).sqrt() <= eps {
+                return Some(s);
+            }
+        }
+        None
+    }
+
+    /// The Newton solves of Code_Aster (xnewto) converge on the interface;
+    /// a point still off it means a case that is not reproduced.
     fn check_on_crack(&self, xi: &[f64; 3], ifiss: usize, what: &str) -> Result<(), String> {
         let v = self.interp(xi, ifiss);
         let scale = self.lsn[ifiss].iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-300);
         if v.abs() > 1e-10 * scale {
             return Err(format!(
-                "TOPOSE: {what}: the start point is off the interface (level set {v:.3e}): the curved-interface \
-                 Newton solve is not supported"
+                "TOPOSE: {what}: the point is off the interface (level set {v:.3e}) after the Newton solve"
             ));
         }
         Ok(())
@@ -453,9 +528,20 @@ impl Ctx<'_> {
         Ok((self.to_real(ka), self.to_real(kb)))
     }
 
-    /// Type-2 mid-point between two intersection points (`xmifis`).
+    /// Type-2 mid-point between two intersection points (`xmifis`): from
+    /// their middle, a Newton solve along the perpendicular to the segment
+    /// (in the reference plane) puts it on the interface.
     fn mifis(&self, p1: &Pt, p2: &Pt, ifiss: usize) -> Result<Pt, String> {
-        let xi = mid(&p1.xi, &p2.xi);
+        let m = mid(&p1.xi, &p2.xi);
+        let d = sub3(&p2.xi, &p1.xi);
+        let xi = if self.dim == 2 {
+            let v = unit(&[-d[1], d[0], 0.0]);
+            let line = |k: f64| ([0, 1, 2].map(|j| m[j] + k * v[j]), v);
+            let k = self.newton(0.0, (-f64::MAX, f64::MAX), line, ifiss).unwrap_or(0.0);
+            line(k).0
+        } else {
+            m
+        };
         self.check_on_crack(&xi, ifiss, "xmifis")?;
         Ok(self.to_real(xi))
     }
@@ -960,6 +1046,8 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
         HEXA20_SPLIT.iter().map(|s| s.to_vec()).collect()
     };
     let mut heav: Vec<Vec<i32>> = vec![vec![0; cracks.len()]; subs.len()];
+    // (intersection point, earlier crack it lies on).
+    let mut on_crack: Vec<(usize, usize)> = Vec::new();
     for ifiss in 0..cracks.len() {
         let fisc = master_chain(cracks, ifiss)?;
         let nit = subs.len();
@@ -986,6 +1074,18 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
                         ctx.pint.len() - 1
                     }
                 };
+                // A point of a sub-edge lying on an earlier crack (both ends
+                // on its level set) is on that crack too: a junction point
+                // (`xdecqu`'s najonc/nbjonc). On a curved interface the
+                // parent interpolation there is only near zero.
+                let e = if dim == 2 { TRIA6_EDGES[p.edge - 1] } else { TETRA10_EDGES[p.edge - 1] };
+                let (na, nb) = (subs[it][e[0] - 1], subs[it][e[1] - 1]);
+                for f in 0..ifiss {
+                    let on = |id: u32| ctx.node_lsn(id, f, &[], &[]).map(|v| v.abs() <= 1e-12 * ctx.lonref);
+                    if on(na)? && on(nb)? && !on_crack.contains(&(ni, f)) {
+                        on_crack.push((ni, f));
+                    }
+                }
                 for ch in children.iter_mut() {
                     for v in ch.iter_mut().take(dim + 1) {
                         if *v == 101 + ipt as u32 {
@@ -1068,7 +1168,9 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
         .chain(ctx.pmil.iter().enumerate().map(|(k, p)| (2001 + k as u32, *p)))
         .chain(centre_ids.iter().copied());
     for (id, p) in generated {
-        points.push(CutPoint { id, xi: p.xi, x: p.x, lsn: (0..ncr).map(|k| ctx.interp(&p.xi, k)).collect() });
+        let on = |k: usize| id > 1000 && id < 2000 && on_crack.contains(&((id - 1001) as usize, k));
+        let lsn = (0..ncr).map(|k| if on(k) { 0.0 } else { ctx.interp(&p.xi, k) }).collect();
+        points.push(CutPoint { id, xi: p.xi, x: p.x, lsn });
     }
     let index: std::collections::HashMap<u32, usize> = points.iter().enumerate().map(|(i, p)| (p.id, i)).collect();
     let subcells = subs
