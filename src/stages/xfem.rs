@@ -139,11 +139,26 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
     if contact == "STANDARD" {
         return Err(a.err("CONTACT", "CONTACT='STANDARD' is not supported yet (only 'SANS' and 'MORTAR')"));
     }
-    if a.text("DECOUPE_FACETTE").is_some_and(|d| d != "SOUS_ELEMENTS") && contact == "MORTAR" {
-        // Code_Aster's default facet cutting differs from the sub-cell faces.
-        return Err(
-            a.err("DECOUPE_FACETTE", "with CONTACT='MORTAR' only DECOUPE_FACETTE='SOUS_ELEMENTS' is supported yet")
-        );
+    // DECOUPE_FACETTE: the facets are always the faces of the sub-cells on
+    // the interface. Code_Aster's default cuts the interface polygon of each
+    // parent on its own; on a straight interface in an affine linear cell
+    // both tile the same segment or polygon with flat pieces, and the facet
+    // integrals agree (docs/wtnv149.md). Quadratic cells keep the faithful
+    // SOUS_ELEMENTS only.
+    let mo_in = a.req_concept("MODELE_IN")?;
+    let quadratic_model = {
+        let m = super::model::model_of(&mo_in)?;
+        let mesh = m.current_mesh();
+        (0..mesh.ncells()).any(|c| {
+            m.elements[c].as_ref().is_some_and(|e| e.role == crate::concepts::model::Role::Bulk)
+                && mesh.cell_types[c].nnodes() > mesh.cell_types[c].nvertices()
+        })
+    };
+    if a.text("DECOUPE_FACETTE").is_some_and(|d| d != "SOUS_ELEMENTS") && contact == "MORTAR" && quadratic_model {
+        return Err(a.err(
+            "DECOUPE_FACETTE",
+            "with CONTACT='MORTAR' on quadratic cells only DECOUPE_FACETTE='SOUS_ELEMENTS' is supported yet",
+        ));
     }
     let mo = a.req_concept("MODELE_IN")?;
     let cracks = a.concepts("FISSURE");

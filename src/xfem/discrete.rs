@@ -191,7 +191,10 @@ pub struct BulkPoint {
 pub fn bulk_points(t: CellType, coords: &[[f64; 3]], xm: &XfemModel, cell: usize) -> Result<Vec<BulkPoint>, String> {
     let xc = &xm.cells[&cell];
     let dim = t.dim();
-    let st = XfemModel::subcell_type(dim);
+    let st = match xc.cutting.subcells.first().map(|sc| sc.nodes.len()) {
+        Some(n) => subcell_type(dim, n),
+        None => return Ok(Vec::new()),
+    };
     let rule = subcell_rule(dim);
     let nsub = st.nnodes();
     let mut out = Vec::new();
@@ -303,6 +306,18 @@ pub struct Facet {
     pub master: Vec<i32>,
 }
 
+/// The simplex type of a sub-cell from its node count.
+pub fn subcell_type(dim: usize, nnodes: usize) -> CellType {
+    match (dim, nnodes) {
+        (2, 3) => CellType::Tria3,
+        (2, _) => CellType::Tria6,
+        (_, 4) => CellType::Tetra4,
+        _ => CellType::Tetra10,
+    }
+}
+
+const TRIA3_EDGES: [[usize; 2]; 3] = [[0, 1], [1, 2], [2, 0]];
+const TETRA4_FACES: [[usize; 3]; 4] = [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]];
 const TRIA6_EDGES: [[usize; 3]; 3] = [[0, 1, 3], [1, 2, 4], [2, 0, 5]];
 const TETRA10_FACES: [[usize; 6]; 4] = [[0, 1, 2, 4, 5, 6], [0, 1, 3, 4, 8, 7], [0, 2, 3, 6, 9, 7], [1, 2, 3, 5, 9, 8]];
 
@@ -315,10 +330,12 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
         let Some(p) = xc.cracks.iter().position(|&k| k == g) else { continue };
         let t = mesh.cell_types[c];
         let nodes = &mesh.cells[c];
-        let faces: Vec<Vec<usize>> = if mesh.dim == 2 {
-            TRIA6_EDGES.iter().map(|e| e.to_vec()).collect()
-        } else {
-            TETRA10_FACES.iter().map(|f| f.to_vec()).collect()
+        let linear = xc.cutting.subcells.first().is_some_and(|sc| sc.nodes.len() == mesh.dim + 1);
+        let faces: Vec<Vec<usize>> = match (mesh.dim, linear) {
+            (2, true) => TRIA3_EDGES.iter().map(|e| e.to_vec()).collect(),
+            (2, false) => TRIA6_EDGES.iter().map(|e| e.to_vec()).collect(),
+            (_, true) => TETRA4_FACES.iter().map(|f| f.to_vec()).collect(),
+            (_, false) => TETRA10_FACES.iter().map(|f| f.to_vec()).collect(),
         };
         // Vertex sets of the faces of the master-side sub-cells (he = +1).
         let key = |sc: &super::topose::SubCell, f: &[usize]| -> Vec<usize> {
@@ -435,7 +452,12 @@ pub fn facet_points(
     rule: &QuadratureRule,
 ) -> Result<Vec<FacetPoint>, String> {
     let dim = t.dim();
-    let ft = if dim == 2 { CellType::Seg3 } else { CellType::Tria6 };
+    let ft = match (dim, facet.xi.len()) {
+        (2, 2) => CellType::Seg2,
+        (2, _) => CellType::Seg3,
+        (_, 3) => CellType::Tria3,
+        _ => CellType::Tria6,
+    };
     let nf = ft.nnodes();
     let mut n = vec![0.0; nf];
     let mut d = vec![[0.0; 3]; nf];

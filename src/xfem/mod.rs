@@ -13,6 +13,7 @@ pub mod model;
 pub mod mortar;
 pub mod postmail;
 pub mod topose;
+pub mod topose_linear;
 
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};

@@ -190,7 +190,14 @@ pub fn visual_mesh(
     let (mut inntot, mut inmtot) = (0usize, 0usize);
     for (&parent, cut) in cuttings {
         let dim = mesh.cell_types[parent].dim();
-        let sub_type = Cutting::subcell_type(dim);
+        let sub_type = if matches!(
+            mesh.cell_types[parent],
+            CellType::Tria3 | CellType::Quad4 | CellType::Tetra4 | CellType::Penta6 | CellType::Hexa8
+        ) {
+            crate::xfem::topose_linear::subcell_type(dim)
+        } else {
+            Cutting::subcell_type(dim)
+        };
         let (n0, m0) = (inntot, inmtot);
         let mut local: HashMap<(usize, Vec<i32>), usize> = HashMap::new();
         for s in &cut.subcells {

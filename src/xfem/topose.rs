@@ -1004,7 +1004,15 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
     let (dim, nno) = match t {
         CellType::Quad8 => (2, 8),
         CellType::Hexa20 => (3, 20),
-        _ => return Err(format!("TOPOSE: parent cell type {} is not supported (QUAD8, HEXA20 only)", t.name())),
+        CellType::Tria3 | CellType::Quad4 | CellType::Tetra4 | CellType::Penta6 | CellType::Hexa8 => {
+            return super::topose_linear::topose_linear(t, coords, cracks)
+        }
+        _ => {
+            return Err(format!(
+                "TOPOSE: parent cell type {} is not supported (QUAD8, HEXA20 and the linear TRIA3, QUAD4, TETRA4, PENTA6, HEXA8)",
+                t.name()
+            ))
+        }
     };
     if coords.len() != nno {
         return Err(format!("TOPOSE: {} needs {nno} node coordinates, got {}", t.name(), coords.len()));

@@ -1,0 +1,829 @@
+//! TOPOSE sub-cell cutting for LINEAR X-FEM parents (TRIA3, QUAD4,
+//! TETRA4, HEXA8, PENTA6), as Code_Aster's `te0514` does it on its linear
+//! path: primary split into simplices (`xdivte`), then, crack after crack,
+//! every current simplex is cut (`xdecou`: intersection points on its edges
+//! in `conare` order, crossing points by a Newton solve of the parent's
+//! level set along the edge, `xinter`) and replaced by its children
+//! (`xdecov`, with `xpente` for the prisms), tetrahedra reoriented, the
+//! Heaviside value of each child from the sum of the level set over its
+//! vertices, the junction skip for a branch. Intersection points are merged
+//! over the whole parent and stored in creation order (`PINTTO`).
+//!
+//! The result uses the types of [`crate::xfem::topose`]: point ids 1..=nno
+//! for the parent's nodes (Code_Aster local order) and 1000+k for the
+//! intersection points (there are no mid-points or centre nodes); the
+//! sub-cells are TRIA3 / TETRA4 in Code_Aster's local order, first child in
+//! the slot of its parent simplex, the others appended.
+//!
+//! Every `ASSERT` of the Fortran on this path (too many points, unexpected
+//! vertex configurations, a zero level-set sum on a principal element, a
+//! crossing point outside the parent) is reported as an error naming the
+//! case; nothing is guessed.
+
+use crate::fem::reference::{map_to_real, node_coords, shape, shape_and_deriv};
+use crate::mesh::CellType;
+use crate::xfem::topose::{CrackInCell, CutPoint, Cutting, SubCell};
+
+/// Coincidence tolerance of the point lists (`cridist`), relative to the
+/// parent's characteristic length.
+const CRIDIST: f64 = 1e-9;
+
+/// Edges of the TRIA3 / TETRA4 simplices (`conare`), 1-based local vertices.
+const TRIA3_EDGES: [[usize; 2]; 3] = [[1, 2], [2, 3], [3, 1]];
+const TETRA4_EDGES: [[usize; 2]; 6] = [[1, 2], [1, 3], [1, 4], [2, 3], [2, 4], [3, 4]];
+
+/// Primary splits (`xdivte`, linear parents).
+const QUAD4_SPLIT: [[u32; 3]; 2] = [[1, 2, 4], [2, 3, 4]];
+const HEXA8_SPLIT: [[u32; 4]; 6] = [[6, 3, 2, 4], [4, 5, 1, 2], [2, 5, 6, 4], [5, 4, 8, 6], [3, 6, 7, 8], [3, 8, 4, 6]];
+const PENTA6_SPLIT: [[u32; 4]; 3] = [[5, 4, 6, 1], [1, 2, 3, 6], [6, 2, 5, 1]];
+
+/// The simplex type of the sub-cells of a linear parent of dimension `dim`.
+pub fn subcell_type(dim: usize) -> CellType {
+    if dim == 2 {
+        CellType::Tria3
+    } else {
+        CellType::Tetra4
+    }
+}
+
+/// A point: reference coordinates in the parent and real coordinates.
+#[derive(Debug, Clone, Copy)]
+struct Pt {
+    xi: [f64; 3],
+    x: [f64; 3],
+}
+
+/// An intersection point of the current simplex (`pinter` / `ainter`).
+#[derive(Debug, Clone, Copy)]
+struct Inter {
+    p: Pt,
+    /// 1-based local edge; 0 when the point is a vertex of the simplex.
+    edge: usize,
+    /// Id of that vertex when `edge == 0`.
+    node: u32,
+}
+
+fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+fn sub3(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+/// Characteristic length of a linear parent (`loncar`).
+fn loncar(t: CellType, x: &[[f64; 3]]) -> f64 {
+    match t {
+        CellType::Hexa8 => dist(&x[0], &x[6]),
+        CellType::Penta6 => (dist(&x[2], &x[0]) * dist(&x[2], &x[1]) * dist(&x[2], &x[5])).cbrt(),
+        CellType::Tetra4 => (dist(&x[0], &x[1]) * dist(&x[0], &x[2]) * dist(&x[0], &x[3])).cbrt(),
+        // QUAD4, TRIA3: ((N1-N2)·(N1-N3))^(1/2).
+        _ => (dist(&x[0], &x[1]) * dist(&x[0], &x[2])).sqrt(),
+    }
+}
+
+/// Is a reference point inside the parent's reference domain (`xveri0`,
+/// tolerance 1e-12)?
+fn inside(t: CellType, xi: &[f64; 3]) -> bool {
+    const TOLE: f64 = 1e-12;
+    let (zero, one) = (-TOLE, 1.0 + TOLE);
+    match t {
+        CellType::Tria3 => xi[0] >= zero && xi[1] >= zero && 1.0 - xi[0] - xi[1] >= zero,
+        CellType::Tetra4 => xi.iter().all(|&v| v >= zero) && 1.0 - xi[0] - xi[1] - xi[2] >= zero,
+        CellType::Penta6 => xi[0].abs() <= one && xi[1] <= one && xi[2] <= one && 1.0 - xi[1] - xi[2] >= zero,
+        _ => xi.iter().take(t.dim()).all(|v| v.abs() <= one),
+    }
+}
+
+/// The masters a crack branches on, transitively (`fisc` in `te0514`):
+/// (crack index in the cell, coef).
+fn master_chain(cracks: &[CrackInCell], ifiss: usize) -> Result<Vec<(usize, f64)>, String> {
+    let mut chain = Vec::new();
+    let mut k = ifiss;
+    while let Some((m, c)) = cracks[k].master {
+        if m >= cracks.len() || chain.len() > cracks.len() {
+            return Err(format!("TOPOSE: invalid junction table for crack {} of the cell", ifiss + 1));
+        }
+        chain.push((m, c));
+        k = m;
+    }
+    Ok(chain)
+}
+
+/// The parent cell and the intersection points found so far.
+struct Ctx<'a> {
+    t: CellType,
+    dim: usize,
+    nno: usize,
+    coords: &'a [[f64; 3]],
+    /// lsn[crack][node].
+    lsn: Vec<&'a [f64]>,
+    /// Intersection points of the parent (`PINTTO`), ids 1001...
+    pint: Vec<Pt>,
+    lonref: f64,
+}
+
+impl Ctx<'_> {
+    fn edges(&self) -> &'static [[usize; 2]] {
+        if self.dim == 2 {
+            &TRIA3_EDGES
+        } else {
+            &TETRA4_EDGES
+        }
+    }
+
+    fn interp(&self, xi: &[f64; 3], crack: usize) -> f64 {
+        shape(self.t, xi).iter().zip(self.lsn[crack]).map(|(n, v)| n * v).sum()
+    }
+
+    /// A parent node, an archived intersection point (1001..) or a point of
+    /// the current simplex (101..).
+    fn pt(&self, id: u32, local: &[Inter]) -> Result<Pt, String> {
+        let i = id as usize;
+        let p = if id == 0 {
+            None
+        } else if i <= self.nno {
+            Some(Pt { xi: node_coords(self.t)[i - 1], x: self.coords[i - 1] })
+        } else if (101..1000).contains(&id) {
+            local.get(i - 101).map(|p| p.p)
+        } else if id > 1000 {
+            self.pint.get(i - 1001).copied()
+        } else {
+            None
+        };
+        p.ok_or_else(|| format!("TOPOSE: internal error, point id {id} is unknown"))
+    }
+
+    /// Level set of a vertex as `xdecov` sums it (and `xdecou` for the
+    /// junction test): nodal value at parent nodes, parent interpolation
+    /// elsewhere.
+    fn vertex_lsn(&self, id: u32, crack: usize, local: &[Inter]) -> Result<f64, String> {
+        if (id as usize) <= self.nno && id > 0 {
+            Ok(self.lsn[crack][id as usize - 1])
+        } else {
+            Ok(self.interp(&self.pt(id, local)?.xi, crack))
+        }
+    }
+
+    /// Level set of a vertex as `xdecou` reads it on an edge: the
+    /// interpolated value at an intersection point is set to 0 below
+    /// lonref·1e-4.
+    fn edge_lsn(&self, id: u32, crack: usize) -> Result<f64, String> {
+        let v = self.vertex_lsn(id, crack, &[])?;
+        if id as usize > self.nno && v.abs() < self.lonref * 1e-4 {
+            Ok(0.0)
+        } else {
+            Ok(v)
+        }
+    }
+
+    /// Crossing point of crack `ifiss` on the edge (na, nb) (`xinter` with
+    /// no mid-node): Newton solve of φ(ξa + s(ξb − ξa)) = 0 on the parent's
+    /// interpolation, from the linear estimate s = φa/(φa − φb), iterates
+    /// kept in [0, 1] (`xnewto` / `xdelt0`); the start value is kept when
+    /// it does not converge in 100 iterations.
+    fn xinter(&self, na: u32, nb: u32, la: f64, lb: f64, ifiss: usize) -> Result<Pt, String> {
+        let pa = self.pt(na, &[])?.xi;
+        let pb = self.pt(nb, &[])?.xi;
+        if la - lb == 0.0 {
+            return Err("TOPOSE: xinter: equal level sets at the ends of a cut edge".into());
+        }
+        let s0 = la / (la - lb);
+        let dir = sub3(&pb, &pa);
+        let on_edge = |s: f64| -> [f64; 3] {
+            let pm = [0, 1, 2].map(|j| (pa[j] + pb[j]) / 2.0);
+            let (wa, wm, wb) = (2.0 * (1.0 - s) * (0.5 - s), 4.0 * s * (1.0 - s), 2.0 * s * (s - 0.5));
+            [0, 1, 2].map(|j| wa * pa[j] + wm * pm[j] + wb * pb[j])
+        };
+        let nn = self.nno;
+        let (mut n, mut dn) = (vec![0.0; nn], vec![[0.0; 3]; nn]);
+        let mut s = s0;
+        let mut iter = 0;
+        loop {
+            let xi = on_edge(s);
+            shape_and_deriv(self.t, &xi, &mut n, &mut dn);
+            let f: f64 = n.iter().zip(self.lsn[ifiss]).map(|(a, b)| a * b).sum();
+            let df: f64 = dn.iter().zip(self.lsn[ifiss]).map(|(d, v)| v * dot(d, &dir)).sum();
+            if df.abs() <= 1.0 / f64::MAX || !df.is_finite() {
+                return Err("TOPOSE: xinter: zero derivative of the level set along a cut edge".into());
+            }
+            let delta = f / df;
+            s -= delta;
+            iter += 1;
+            if iter == 100 {
+                s = s0;
+                break;
+            }
+            if s > 1.0 {
+                s = (s + delta + 1.0) / 2.0;
+            } else if s < 0.0 {
+                s = (s + delta) / 2.0;
+            }
+            let (refe, eps) = if s * s <= 1e-9 { (1.0, 1e-11) } else { (s * s, 1e-9) };
+            if iter >= 3 && (delta * delta / refe).sqrt() <= eps {
+                // xnewto applies the last increment once more on exit.
+                s -= delta;
+                break;
+            }
+        }
+        let xi = on_edge(s);
+        if !inside(self.t, &xi) {
+            return Err(format!("TOPOSE: xinter: the crossing point {xi:?} is outside the parent (xveri0)"));
+        }
+        Ok(Pt { xi, x: map_to_real(self.t, self.coords, &xi) })
+    }
+
+    /// Intersection points of simplex `sub` with crack `ifiss` (`xdecou`):
+    /// the points and how many are vertices of the simplex.
+    fn decou(&self, sub: &[u32], ifiss: usize, fisc: &[(usize, f64)]) -> Result<(Vec<Inter>, usize), String> {
+        // Junction: the branch does not exist on this side of its masters.
+        for &(m, c) in fisc {
+            let mut som = 0.0;
+            for &id in sub {
+                som += self.vertex_lsn(id, m, &[])?;
+            }
+            if c * som > 0.0 {
+                return Ok((Vec::new(), 0));
+            }
+        }
+        // Capacity of the point list: 2 on a triangle, 4 on a tetrahedron.
+        let ptmax = if self.dim == 2 { 2 } else { 4 };
+        let tol = self.lonref * CRIDIST;
+        let mut inter: Vec<Inter> = Vec::new();
+        let mut npts = 0;
+        let add = |list: &mut Vec<Inter>, p: Inter| -> Result<bool, String> {
+            if list.iter().any(|q| dist(&q.p.x, &p.p.x) < tol) {
+                return Ok(false);
+            }
+            if list.len() == ptmax {
+                return Err(format!(
+                    "TOPOSE: more than {ptmax} intersection points of crack {} on a {} sub-cell (xajpin)",
+                    ifiss + 1,
+                    subcell_type(self.dim).name()
+                ));
+            }
+            list.push(p);
+            Ok(true)
+        };
+        for (ia, e) in self.edges().iter().enumerate() {
+            let (na, nb) = (sub[e[0] - 1], sub[e[1] - 1]);
+            let a = self.pt(na, &[])?;
+            let b = self.pt(nb, &[])?;
+            let la = self.edge_lsn(na, ifiss)?;
+            let lb = self.edge_lsn(nb, ifiss)?;
+            if la * lb > 0.0 {
+                continue;
+            }
+            if la == 0.0 && add(&mut inter, Inter { p: a, edge: 0, node: na })? {
+                npts += 1;
+            }
+            if lb == 0.0 && add(&mut inter, Inter { p: b, edge: 0, node: nb })? {
+                npts += 1;
+            }
+            if la != 0.0 && lb != 0.0 {
+                let c = self.xinter(na, nb, la, lb, ifiss)?;
+                add(&mut inter, Inter { p: c, edge: ia + 1, node: 0 })?;
+            }
+        }
+        // Selection sort by edge number (vertices first).
+        let n = inter.len();
+        for pd in 0..n.saturating_sub(1) {
+            let mut pp = pd;
+            for i in pd..n {
+                if inter[i].edge < inter[pp].edge {
+                    pp = i;
+                }
+            }
+            inter.swap(pp, pd);
+        }
+        // Four points: point 4 is the one whose edge shares no vertex with point 1's.
+        if n == 4 && npts == 0 {
+            let ed = self.edges();
+            let a1 = inter[0].edge;
+            for ia in 1..3 {
+                let a2 = inter[ia].edge;
+                let shared = (0..2).any(|i| (0..2).any(|j| ed[a1 - 1][i] == ed[a2 - 1][j]));
+                if !shared {
+                    inter.swap(ia, 3);
+                }
+            }
+        }
+        Ok((inter, npts))
+    }
+}
+
+/// First four nodes of the three tetrahedra of a prism (`xpente`, default
+/// pattern, linear part).
+fn xpente(n: &[u32; 6]) -> [[u32; 4]; 3] {
+    [[n[0], n[4], n[1], n[5]], [n[3], n[4], n[0], n[5]], [n[0], n[1], n[2], n[5]]]
+}
+
+/// The vertex shared by edges `a1` and `a2` and their other ends: (a, b, c)
+/// with b on `a1` and c on `a2` (last match, as the Fortran loops).
+fn abc(ed: &[[usize; 2]], a1: usize, a2: usize) -> (usize, usize, usize) {
+    let (mut a, mut b, mut c) = (0, 0, 0);
+    for i in 0..2 {
+        for j in 0..2 {
+            if ed[a1 - 1][i] == ed[a2 - 1][j] {
+                a = ed[a1 - 1][i];
+                b = ed[a1 - 1][1 - i];
+                c = ed[a2 - 1][1 - j];
+            }
+        }
+    }
+    (a, b, c)
+}
+
+impl Ctx<'_> {
+    /// Children of simplex `sub` (`xdecov`): connectivities with the local
+    /// ids 101.. for the intersection points on edges.
+    fn decov(&self, sub: &[u32], inter: &[Inter], npts: usize) -> Result<Vec<Vec<u32>>, String> {
+        let n = inter.len();
+        let ed = self.edges();
+        let s = |k: usize| sub[k - 1];
+        let bad = |what: &str| {
+            format!(
+                "TOPOSE: {} sub-cell with {n} intersection point(s), {npts} on its vertices: {what} (xdecov)",
+                subcell_type(self.dim).name()
+            )
+        };
+        let mut out: Vec<Vec<u32>> = Vec::new();
+        if self.dim == 2 {
+            match n {
+                0 | 1 => {
+                    if npts != n {
+                        return Err(bad("a single point that is not a vertex"));
+                    }
+                    out.push(sub.to_vec());
+                }
+                2 => {
+                    let (a1, a2) = (inter[0].edge, inter[1].edge);
+                    match npts {
+                        2 => out.push(sub.to_vec()),
+                        1 => {
+                            if a1 != 0 || a2 == 0 {
+                                return Err(bad("unexpected point order"));
+                            }
+                            let v = inter[0].node;
+                            out.push(vec![v, 102, s(ed[a2 - 1][0])]);
+                            out.push(vec![v, 102, s(ed[a2 - 1][1])]);
+                        }
+                        _ => {
+                            if a1 == 0 {
+                                return Err(bad("unexpected point order"));
+                            }
+                            let (a, b, c) = abc(ed, a1, a2);
+                            if a * b * c == 0 {
+                                return Err(bad("the two cut edges share no vertex"));
+                            }
+                            out.push(vec![101, 102, s(a)]);
+                            out.push(vec![101, 102, s(c)]);
+                            out.push(vec![101, s(b), s(c)]);
+                        }
+                    }
+                }
+                _ => return Err(bad("too many points")),
+            }
+        } else {
+            match n {
+                0..=2 => {
+                    if npts != n {
+                        return Err(bad("fewer than 3 points, not all vertices"));
+                    }
+                    out.push(sub.to_vec());
+                }
+                3 => {
+                    let (a1, a2, a3) = (inter[0].edge, inter[1].edge, inter[2].edge);
+                    match npts {
+                        3 => out.push(sub.to_vec()),
+                        2 => {
+                            if a1 != 0 || a2 != 0 || a3 == 0 {
+                                return Err(bad("unexpected point order"));
+                            }
+                            let (v1, v2) = (inter[0].node, inter[1].node);
+                            out.push(vec![v1, v2, 103, s(ed[a3 - 1][0])]);
+                            out.push(vec![v1, v2, 103, s(ed[a3 - 1][1])]);
+                        }
+                        1 => {
+                            if a1 != 0 || a2 == 0 || a3 == 0 {
+                                return Err(bad("unexpected point order"));
+                            }
+                            let (a, b, c) = abc(ed, a2, a3);
+                            if a * b * c == 0 {
+                                return Err(bad("the two cut edges share no vertex"));
+                            }
+                            let v = inter[0].node;
+                            out.push(vec![v, 102, 103, s(a)]);
+                            out.push(vec![v, 102, 103, s(c)]);
+                            out.push(vec![v, 102, s(b), s(c)]);
+                        }
+                        _ => {
+                            let (a, b, c) = abc(ed, a1, a2);
+                            // The end of edge a3 other than a (the last one when neither is a).
+                            let d = ed[a3 - 1].iter().rev().find(|&&v| v != a).copied().unwrap_or(0);
+                            if a * b * c * d == 0 {
+                                return Err(bad("inconsistent cut edges"));
+                            }
+                            out.push(vec![101, 102, 103, s(a)]);
+                            let pr = [103, 101, 102, s(d), s(b), s(c)];
+                            out.extend(xpente(&pr).iter().map(|t| t.to_vec()));
+                        }
+                    }
+                }
+                4 => {
+                    let a: Vec<usize> = inter.iter().map(|p| p.edge).collect();
+                    if a.contains(&0) {
+                        return Err(bad("four points, some of them vertices"));
+                    }
+                    let (va, vb, vc) = abc(ed, a[0], a[1]);
+                    let (vd, _, _) = abc(ed, a[2], a[3]);
+                    if va * vb * vc * vd == 0 {
+                        return Err(bad("inconsistent cut edges"));
+                    }
+                    let p1 = [104, 102, s(vc), 103, 101, s(vb)];
+                    let p2 = [s(va), 101, 102, s(vd), 103, 104];
+                    out.extend(xpente(&p1).iter().map(|t| t.to_vec()));
+                    out.extend(xpente(&p2).iter().map(|t| t.to_vec()));
+                }
+                _ => return Err(bad("too many points")),
+            }
+        }
+        Ok(out)
+    }
+
+    /// Orientation of the tetrahedra (`xdecov`): a negative volume swaps
+    /// vertices 3 and 4.
+    fn orient(&self, children: &mut [Vec<u32>], local: &[Inter]) -> Result<(), String> {
+        if self.dim != 3 {
+            return Ok(());
+        }
+        for ch in children.iter_mut() {
+            let mut v = [[0.0; 3]; 4];
+            for (k, vk) in v.iter_mut().enumerate() {
+                *vk = self.pt(ch[k], local)?.x;
+            }
+            let ps = dot(&cross(&sub3(&v[1], &v[0]), &sub3(&v[2], &v[0])), &sub3(&v[3], &v[0]));
+            if ps < 0.0 {
+                ch.swap(2, 3);
+            }
+        }
+        Ok(())
+    }
+
+    /// Heaviside values of the children (`xdecov`): earlier cracks copied
+    /// from the parent simplex; the current one 0 on the inactive side of
+    /// a junction, else the sign of the sum of its level set over the
+    /// vertices.
+    fn heaviside(
+        &self,
+        children: &[Vec<u32>],
+        local: &[Inter],
+        parent_he: &[i32],
+        ifiss: usize,
+        fisc: &[(usize, f64)],
+    ) -> Result<Vec<Vec<i32>>, String> {
+        let mut out = Vec::with_capacity(children.len());
+        for ch in children {
+            let mut he: Vec<i32> = parent_he[..ifiss].to_vec();
+            he.push(0);
+            let mut inactive = false;
+            for &(m, c) in fisc {
+                let mut som = 0.0;
+                for &id in ch {
+                    som += self.vertex_lsn(id, m, local)?;
+                }
+                inactive |= c * som > 0.0;
+            }
+            if !inactive {
+                let mut som = 0.0;
+                for &id in ch {
+                    som += self.vertex_lsn(id, ifiss, local)?;
+                }
+                if som == 0.0 {
+                    return Err(format!(
+                        "TOPOSE: the level set of crack {} sums to 0 over a sub-cell: its side is undefined \
+                         (xdecov)",
+                        ifiss + 1
+                    ));
+                }
+                he[ifiss] = if som < 0.0 { -1 } else { 1 };
+            }
+            out.push(he);
+        }
+        Ok(out)
+    }
+}
+
+/// Cut a linear parent cell by its interfaces, as TOPOSE (`te0514`,
+/// `xdivte` / `xdecou` / `xdecov`) does. `coords` and `cracks[k].lsn`
+/// follow Code_Aster's local node order; the cracks are in the cell's
+/// order (model order), `master` pointing into that list.
+pub fn topose_linear(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Result<Cutting, String> {
+    let (dim, nno, split): (usize, usize, Vec<Vec<u32>>) = match t {
+        CellType::Tria3 => (2, 3, vec![vec![1, 2, 3]]),
+        CellType::Quad4 => (2, 4, QUAD4_SPLIT.iter().map(|s| s.to_vec()).collect()),
+        CellType::Tetra4 => (3, 4, vec![vec![1, 2, 3, 4]]),
+        CellType::Penta6 => (3, 6, PENTA6_SPLIT.iter().map(|s| s.to_vec()).collect()),
+        CellType::Hexa8 => (3, 8, HEXA8_SPLIT.iter().map(|s| s.to_vec()).collect()),
+        _ => {
+            return Err(format!(
+                "TOPOSE: parent cell type {} is not a supported linear cell (TRIA3, QUAD4, TETRA4, PENTA6, HEXA8)",
+                t.name()
+            ))
+        }
+    };
+    if coords.len() != nno {
+        return Err(format!("TOPOSE: {} needs {nno} node coordinates, got {}", t.name(), coords.len()));
+    }
+    if cracks.is_empty() {
+        return Err("TOPOSE: the cell sees no crack".into());
+    }
+    if cracks.len() > 10 {
+        return Err("TOPOSE: more than 10 cracks in a cell (XFEM2_6)".into());
+    }
+    for (k, c) in cracks.iter().enumerate() {
+        if c.lsn.len() != nno {
+            return Err(format!("TOPOSE: crack {} has {} level-set values for {nno} nodes", k + 1, c.lsn.len()));
+        }
+    }
+    let mut ctx = Ctx {
+        t,
+        dim,
+        nno,
+        coords,
+        lsn: cracks.iter().map(|c| c.lsn.as_slice()).collect(),
+        pint: Vec::new(),
+        lonref: loncar(t, coords),
+    };
+    let mut subs = split;
+    let mut heav: Vec<Vec<i32>> = vec![vec![0; cracks.len()]; subs.len()];
+    // (intersection point, earlier crack whose level set is 0 at both ends of its edge).
+    let mut on_crack: Vec<(usize, usize)> = Vec::new();
+    for ifiss in 0..cracks.len() {
+        let fisc = master_chain(cracks, ifiss)?;
+        let nit = subs.len();
+        for it in 0..nit {
+            let (inter, npts) = ctx.decou(&subs[it], ifiss, &fisc)?;
+            let mut children = ctx.decov(&subs[it], &inter, npts)?;
+            ctx.orient(&mut children, &inter)?;
+            let hes = ctx.heaviside(&children, &inter, &heav[it], ifiss, &fisc)?;
+            // Archive the points on edges; a point already known keeps the
+            // last matching number.
+            for (ipt, p) in inter.iter().enumerate() {
+                let found = ctx.pint.iter().rposition(|q| dist(&q.x, &p.p.x) < ctx.lonref * CRIDIST);
+                if p.edge == 0 {
+                    continue;
+                }
+                let ni = match found {
+                    Some(i) => i,
+                    None => {
+                        ctx.pint.push(p.p);
+                        ctx.pint.len() - 1
+                    }
+                };
+                let e = ctx.edges()[p.edge - 1];
+                let (na, nb) = (subs[it][e[0] - 1], subs[it][e[1] - 1]);
+                for f in 0..ifiss {
+                    if ctx.edge_lsn(na, f)? == 0.0 && ctx.edge_lsn(nb, f)? == 0.0 && !on_crack.contains(&(ni, f)) {
+                        on_crack.push((ni, f));
+                    }
+                }
+                for ch in children.iter_mut() {
+                    for v in ch.iter_mut() {
+                        if *v == 101 + ipt as u32 {
+                            *v = 1001 + ni as u32;
+                        }
+                    }
+                }
+            }
+            for (k, (ch, he)) in children.into_iter().zip(hes).enumerate() {
+                if ch.iter().any(|&v| (100..1000).contains(&v)) {
+                    return Err("TOPOSE: internal error, a local point id was left in a sub-cell".into());
+                }
+                let mut h = heav[it].clone();
+                h[..=ifiss].copy_from_slice(&he);
+                if k == 0 {
+                    subs[it] = ch;
+                    heav[it] = h;
+                } else {
+                    subs.push(ch);
+                    heav.push(h);
+                }
+            }
+        }
+    }
+    let ncr = cracks.len();
+    let rnodes = node_coords(t);
+    let mut points: Vec<CutPoint> = (0..nno)
+        .map(|j| CutPoint {
+            id: (j + 1) as u32,
+            xi: rnodes[j],
+            x: coords[j],
+            lsn: (0..ncr).map(|k| cracks[k].lsn[j]).collect(),
+        })
+        .collect();
+    for (k, p) in ctx.pint.iter().enumerate() {
+        let lsn = (0..ncr).map(|f| if on_crack.contains(&(k, f)) { 0.0 } else { ctx.interp(&p.xi, f) }).collect();
+        points.push(CutPoint { id: 1001 + k as u32, xi: p.xi, x: p.x, lsn });
+    }
+    let index = |id: u32| -> Result<usize, String> {
+        if id as usize <= nno {
+            Ok(id as usize - 1)
+        } else if id > 1000 && ((id - 1001) as usize) < ctx.pint.len() {
+            Ok(nno + (id - 1001) as usize)
+        } else {
+            Err(format!("TOPOSE: internal error, point {id} missing"))
+        }
+    };
+    let subcells = subs
+        .iter()
+        .zip(heav)
+        .map(|(s, he)| Ok(SubCell { nodes: s.iter().map(|&v| index(v)).collect::<Result<Vec<_>, String>>()?, he }))
+        .collect::<Result<Vec<_>, String>>()?;
+    Ok(Cutting { points, subcells })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ids(cut: &Cutting, s: &SubCell) -> Vec<u32> {
+        s.nodes.iter().map(|&i| cut.points[i].id).collect()
+    }
+
+    fn area(cut: &Cutting, s: &SubCell) -> f64 {
+        let p = |k: usize| cut.points[s.nodes[k]].x;
+        let (a, b, c) = (p(0), p(1), p(2));
+        ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) / 2.0
+    }
+
+    fn volume(cut: &Cutting, s: &SubCell) -> f64 {
+        let p = |k: usize| cut.points[s.nodes[k]].x;
+        dot(&cross(&sub3(&p(1), &p(0)), &sub3(&p(2), &p(0))), &sub3(&p(3), &p(0))) / 6.0
+    }
+
+    fn check_sides(cut: &Cutting) {
+        for s in &cut.subcells {
+            for (f, &h) in s.he.iter().enumerate() {
+                for &i in &s.nodes {
+                    assert!(cut.points[i].lsn[f] * h as f64 >= -1e-12, "{:?}", ids(cut, s));
+                }
+            }
+        }
+    }
+
+    /// QUAD4 [0,2]×[0,1] cut by y = 0.3 + 0.15 x.
+    #[test]
+    fn quad4_cut_by_one_line() {
+        let c = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+        let lsn: Vec<f64> = c.iter().map(|p| p[1] - 0.3 - 0.15 * p[0]).collect();
+        let cut = topose_linear(CellType::Quad4, &c, &[CrackInCell { lsn, master: None }]).unwrap();
+        // Triangle (1,2,4): points on its edges 2 (2-4, the diagonal) and 3
+        // (4-1), shared vertex 4. Triangle (2,3,4): edges 1 (2-3) and 3 (4-2),
+        // shared vertex 2. First children in slots 1 and 2, the others appended.
+        let all: Vec<Vec<u32>> = cut.subcells.iter().map(|s| ids(&cut, s)).collect();
+        assert_eq!(
+            all,
+            vec![
+                vec![1001, 1002, 4],
+                vec![1003, 1001, 2],
+                vec![1001, 1002, 1],
+                vec![1001, 2, 1],
+                vec![1003, 1001, 4],
+                vec![1003, 3, 4],
+            ]
+        );
+        let he: Vec<i32> = cut.subcells.iter().map(|s| s.he[0]).collect();
+        assert_eq!(he, vec![1, -1, -1, -1, 1, 1]);
+        let x = |id: u32| cut.points.iter().find(|p| p.id == id).unwrap().x;
+        // 1001 on the diagonal 2-4, 1002 on 4-1 at y = 0.3, 1003 on 2-3 at y = 0.6.
+        assert!((x(1001)[0] - 0.7 / 0.65).abs() < 1e-14 && (x(1001)[1] - (1.0 - 0.35 / 0.65)).abs() < 1e-14);
+        assert!(x(1002)[0].abs() < 1e-15 && (x(1002)[1] - 0.3).abs() < 1e-15);
+        assert!((x(1003)[0] - 2.0).abs() < 1e-15 && (x(1003)[1] - 0.6).abs() < 1e-15);
+        assert_eq!(cut.points.len(), 7);
+        let total: f64 = cut.subcells.iter().map(|s| area(&cut, s).abs()).sum();
+        assert!((total - 2.0).abs() < 1e-14, "{total}");
+        check_sides(&cut);
+    }
+
+    /// A line through vertex 1 of a QUAD4: vertex points are not archived.
+    #[test]
+    fn quad4_cut_through_a_vertex() {
+        let c = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+        let lsn: Vec<f64> = c.iter().map(|p| p[1] - 0.25 * p[0]).collect();
+        let cut = topose_linear(CellType::Quad4, &c, &[CrackInCell { lsn, master: None }]).unwrap();
+        let all: Vec<Vec<u32>> = cut.subcells.iter().map(|s| ids(&cut, s)).collect();
+        // (1,2,4): vertex 1 and the diagonal point; (2,3,4): edge 2-3 and the diagonal.
+        assert_eq!(all[0], vec![1, 1001, 2]);
+        assert_eq!(all[1], vec![1002, 1001, 2]);
+        assert_eq!(all[2], vec![1, 1001, 4]);
+        assert_eq!(cut.points.iter().filter(|p| p.id > 1000).count(), 2);
+        let total: f64 = cut.subcells.iter().map(|s| area(&cut, s).abs()).sum();
+        assert!((total - 2.0).abs() < 1e-14);
+        check_sides(&cut);
+    }
+
+    /// The unit cube cut by z = 0.4 + 0.1 x.
+    #[test]
+    fn hexa8_cut_by_one_plane() {
+        let v = [[0., 0., 0.], [1., 0., 0.], [1., 1., 0.], [0., 1., 0.]];
+        let c: Vec<[f64; 3]> = (0..8).map(|k| [v[k % 4][0], v[k % 4][1], (k / 4) as f64]).collect();
+        let lsn: Vec<f64> = c.iter().map(|p| p[2] - 0.4 - 0.1 * p[0]).collect();
+        let cut = topose_linear(CellType::Hexa8, &c, &[CrackInCell { lsn, master: None }]).unwrap();
+        let total: f64 = cut.subcells.iter().map(|s| volume(&cut, s)).sum();
+        assert!((total - 1.0).abs() < 1e-14, "{total}");
+        assert!(cut.subcells.iter().all(|s| volume(&cut, s) > 0.0));
+        check_sides(&cut);
+        // Every tetra of the split has vertices on both sides: 1 or 3 at z = 0
+        // give 4 children, 2 give 6. (6,3,2,4): z = 1,0,0,0 → 4; (4,5,1,2) → 4;
+        // (2,5,6,4) → 6; (5,4,8,6) → 4; (3,6,7,8) → 4; (3,8,4,6) → 6.
+        assert_eq!(cut.subcells.len(), 4 + 4 + 6 + 4 + 4 + 6);
+        // Intersection points: the 4 vertical edges, the diagonals of the 4
+        // side faces and the body diagonal 4-6.
+        let npint = cut.points.iter().filter(|p| p.id > 1000).count();
+        assert_eq!(npint, 4 + 4 + 1);
+        for p in cut.points.iter().filter(|p| p.id > 1000) {
+            assert!(p.lsn[0].abs() < 1e-15);
+        }
+        // First tetra (6,3,2,4), cut on its edges 1-2 (6-3), 1-3 (6-2), 1-4
+        // (6-4): the tip (101,102,103,6), reoriented (3↔4), stays in slot 1;
+        // the prism (103,101,102 | 4,3,2) gives three tetrahedra, appended.
+        let all: Vec<Vec<u32>> = cut.subcells.iter().map(|s| ids(&cut, s)).collect();
+        assert_eq!(all[0], vec![1001, 1002, 6, 1003]);
+        assert_eq!(&all[6..9], &[vec![1003, 3, 1001, 2], vec![4, 3, 1003, 2], vec![1003, 1001, 1002, 2]]);
+        let he: Vec<i32> = cut.subcells.iter().map(|s| s.he[0]).collect();
+        assert_eq!(&he[..1], &[1]);
+        assert_eq!(&he[6..9], &[-1, -1, -1]);
+        // 1003 on the body diagonal 4-6 (the split's inner edge).
+        let p = |id: u32| cut.points.iter().find(|p| p.id == id).unwrap().x;
+        let d = p(1003);
+        assert!(
+            (d[0] - 4.0 / 9.0).abs() < 1e-15 && (d[1] - 5.0 / 9.0).abs() < 1e-15 && (d[2] - 4.0 / 9.0).abs() < 1e-15
+        );
+        let x = |id: u32| cut.points.iter().find(|p| p.id == id).unwrap().x;
+        // 1001 on 6-3 (the face diagonal x = 1 from (1,0,1) to (1,1,0)): z = 0.5 → y = 0.5.
+        assert!((x(1001)[2] - 0.5).abs() < 1e-15 && (x(1001)[1] - 0.5).abs() < 1e-15);
+        // 1002 on the vertical edge 6-2 at z = 0.5.
+        assert!((x(1002)[0] - 1.0).abs() < 1e-15 && x(1002)[1].abs() < 1e-15 && (x(1002)[2] - 0.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn tetra4_through_two_vertices_gives_two_children() {
+        let c = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        // The plane x = y contains vertices 1 and 4 and cuts edge 2-3.
+        let lsn: Vec<f64> = c.iter().map(|p| p[0] - p[1]).collect();
+        let cut = topose_linear(CellType::Tetra4, &c, &[CrackInCell { lsn, master: None }]).unwrap();
+        assert_eq!(cut.subcells.len(), 2);
+        let total: f64 = cut.subcells.iter().map(|s| volume(&cut, s)).sum();
+        assert!((total - 1.0 / 6.0).abs() < 1e-15);
+        assert!(cut.subcells.iter().all(|s| volume(&cut, s) > 0.0));
+        let he: Vec<i32> = cut.subcells.iter().map(|s| s.he[0]).collect();
+        assert_eq!(he, vec![1, -1]);
+        check_sides(&cut);
+    }
+
+    #[test]
+    fn junction_skip_leaves_the_branch_at_zero() {
+        // FISS1: y = 0.5; FISS2: x = 1 exists where y < 0.5 (coef +1: c·φ1 < 0).
+        let c = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+        let l1: Vec<f64> = c.iter().map(|p| p[1] - 0.5).collect();
+        let l2: Vec<f64> = c.iter().map(|p| p[0] - 1.0).collect();
+        let cracks = [CrackInCell { lsn: l1, master: None }, CrackInCell { lsn: l2, master: Some((0, 1.0)) }];
+        let cut = topose_linear(CellType::Quad4, &c, &cracks).unwrap();
+        let total: f64 = cut.subcells.iter().map(|s| area(&cut, s).abs()).sum();
+        assert!((total - 2.0).abs() < 1e-14);
+        check_sides(&cut);
+        for s in &cut.subcells {
+            let cy = s.nodes.iter().map(|&i| cut.points[i].x[1]).sum::<f64>() / 3.0;
+            assert_eq!(s.he[1] == 0, cy > 0.5, "{:?} {:?}", ids(&cut, s), s.he);
+        }
+        let tuples: std::collections::BTreeSet<Vec<i32>> = cut.subcells.iter().map(|s| s.he.clone()).collect();
+        assert_eq!(tuples.len(), 3);
+    }
+
+    #[test]
+    fn penta6_cut_by_one_plane() {
+        let tri = [[0.0, 1.0], [0.0, 0.0], [1.0, 0.0]];
+        let c: Vec<[f64; 3]> = (0..6).map(|k| [tri[k % 3][0], tri[k % 3][1], (k / 3) as f64]).collect();
+        let lsn: Vec<f64> = c.iter().map(|p| p[2] - 0.3 - 0.2 * p[1]).collect();
+        let cut = topose_linear(CellType::Penta6, &c, &[CrackInCell { lsn, master: None }]).unwrap();
+        let total: f64 = cut.subcells.iter().map(|s| volume(&cut, s)).sum();
+        assert!((total - 0.5).abs() < 1e-14, "{total}");
+        assert!(cut.subcells.iter().all(|s| volume(&cut, s) > 0.0));
+        check_sides(&cut);
+    }
+
+    #[test]
+    fn other_types_are_refused() {
+        let e = topose_linear(CellType::Quad8, &[[0.0; 3]; 8], &[]).unwrap_err();
+        assert!(e.contains("QUAD8"), "{e}");
+    }
+}

@@ -1,0 +1,358 @@
+//! TOPOSE sub-cell cutting of LINEAR X-FEM parents (`topose_linear`) on the
+//! meshes of the linear X-FEM tests, read in place from `../shared/astest`:
+//! ssnv173f (QUAD4, LN = Y−2.5), ssnv173b / wtnv143c (HEXA8, LN = Z−12.5),
+//! ssnv511a / ssnv511c (QUAD4 / HEXA8, three interfaces with junctions as in
+//! ssnv513a / ssnv513c), ssnv186c (TRIA3, LN = Y−17.5) and ssnp118t (QUAD4,
+//! inclined interface, GROUP_MA_ENRI). For every X-FEM parent: the
+//! sub-cells fill the parent, every sub-cell lies on one side of each crack
+//! it sees (he ≠ 0), tetrahedra are positive.
+//! Every test prints a message and passes when `../shared` is absent.
+
+use aster::concepts::{Concept, ConceptData, ConceptKind, ConceptRef};
+use aster::fem::reference::jacobian_det;
+use aster::mesh::{CellType, Mesh};
+use aster::xfem::postmail::base36;
+use aster::xfem::topose::{CrackInCell, Cutting};
+use aster::xfem::topose_linear::topose_linear;
+use aster::xfem::{build_interface, crack_of};
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+use std::rc::Rc;
+
+fn mesh(file: &str) -> Option<Rc<Mesh>> {
+    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/astest").join(file);
+    if !p.exists() {
+        println!("SKIP: {} is absent", p.display());
+        return None;
+    }
+    Some(Rc::new(aster::med::read_mesh(&p, None).unwrap()))
+}
+
+/// One DEFI_FISS_XFEM: the level set, and JONCTION (index of the master in
+/// the list, POINT).
+struct Fiss {
+    ln: fn(&[f64; 3]) -> f64,
+    junction: Option<(usize, [f64; 3])>,
+}
+
+struct Case {
+    mesh: Rc<Mesh>,
+    /// Per X-FEM parent: the level sets of its cracks at its nodes.
+    lsn: BTreeMap<usize, Vec<Vec<f64>>>,
+    cuttings: BTreeMap<usize, Cutting>,
+}
+
+fn run(file: &str, enri_group: Option<&str>, fiss: &[Fiss]) -> Option<Case> {
+    let m = mesh(file)?;
+    let mc = Concept::new(ConceptKind::Maillage, ConceptData::Mesh(m.clone()));
+    let enri = enri_group.map(|g| m.cell_groups[g].clone());
+    let mut cracks: Vec<ConceptRef> = Vec::new();
+    for (i, f) in fiss.iter().enumerate() {
+        let l = m.coords.iter().map(f.ln).collect();
+        let (masters, point) = match &f.junction {
+            Some((k, p)) => (vec![cracks[*k].clone()], Some(&p[..m.dim])),
+            None => (vec![], None),
+        };
+        let k = build_interface(mc.clone(), m.clone(), l, enri.clone(), &masters, point)
+            .unwrap_or_else(|e| panic!("{file}: FISS{}: {}", i + 1, e.msg));
+        let c = Concept::new(ConceptKind::FissXfem, ConceptData::Crack(k));
+        c.set_name(&format!("FISS{}", i + 1));
+        cracks.push(c);
+    }
+    let refs: Vec<_> = cracks.iter().map(|c| crack_of(c).unwrap()).collect();
+    // The first declared master of each crack, as MODI_MODELE_XFEM sees it.
+    let masters: Vec<Option<(usize, f64)>> = refs
+        .iter()
+        .map(|k| k.master().map(|(mm, coef)| (cracks.iter().position(|g| Rc::ptr_eq(g, mm)).unwrap(), coef)))
+        .collect();
+    let mut cuttings = BTreeMap::new();
+    let mut lsns = BTreeMap::new();
+    for c in (0..m.ncells()).filter(|&c| m.cell_types[c].dim() == m.dim) {
+        let seen: Vec<usize> =
+            (0..cracks.len()).filter(|&g| refs[g].heaviside_cells.binary_search(&c).is_ok()).collect();
+        if seen.is_empty() {
+            continue;
+        }
+        let nodes = &m.cells[c];
+        let cic: Vec<CrackInCell> = seen
+            .iter()
+            .map(|&g| CrackInCell {
+                lsn: nodes.iter().map(|&n| refs[g].lsn[n]).collect(),
+                master: masters[g].and_then(|(mm, coef)| seen.iter().position(|&s| s == mm).map(|p| (p, coef))),
+            })
+            .collect();
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| m.coords[n]).collect();
+        let cut = topose_linear(m.cell_types[c], &coords, &cic)
+            .unwrap_or_else(|e| panic!("{file}: {}: {e}", m.cell_names[c]));
+        lsns.insert(c, cic.into_iter().map(|k| k.lsn).collect());
+        cuttings.insert(c, cut);
+    }
+    drop(refs);
+    Some(Case { mesh: m, lsn: lsns, cuttings })
+}
+
+fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [b[0] - a[0], b[1] - a[1], b[2] - a[2]]
+}
+
+/// Signed area (TRIA3) or volume (TETRA4) of a sub-cell.
+fn measure(p: &[[f64; 3]]) -> f64 {
+    let (u, v) = (sub(&p[0], &p[1]), sub(&p[0], &p[2]));
+    if p.len() == 3 {
+        (u[0] * v[1] - u[1] * v[0]) / 2.0
+    } else {
+        let w = sub(&p[0], &p[3]);
+        let c = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]];
+        (c[0] * w[0] + c[1] * w[1] + c[2] * w[2]) / 6.0
+    }
+}
+
+/// Area or volume of a parent: Gauss rule exact for the (bi/tri)linear map.
+fn parent_measure(m: &Mesh, c: usize) -> f64 {
+    let t = m.cell_types[c];
+    let x: Vec<[f64; 3]> = m.cells[c].iter().map(|&n| m.coords[n]).collect();
+    let g = 1.0 / 3f64.sqrt();
+    match t {
+        CellType::Tria3 => measure(&x).abs(),
+        CellType::Quad4 => {
+            let mut s = 0.0;
+            for (a, b) in [(-g, -g), (g, -g), (g, g), (-g, g)] {
+                s += jacobian_det(t, &x, &[a, b, 0.0], 2);
+            }
+            s.abs()
+        }
+        CellType::Hexa8 => {
+            let mut s = 0.0;
+            for k in 0..8 {
+                let xi =
+                    [if k & 1 == 0 { -g } else { g }, if k & 2 == 0 { -g } else { g }, if k & 4 == 0 { -g } else { g }];
+                s += jacobian_det(t, &x, &xi, 3);
+            }
+            s.abs()
+        }
+        _ => panic!("{}: unexpected parent type {}", m.cell_names[c], t.name()),
+    }
+}
+
+/// The checks of every X-FEM parent; returns (parents, cut parents, sub-cells).
+fn check(case: &Case) -> (usize, usize, usize) {
+    let m = &case.mesh;
+    let mut ncut = 0;
+    for (&c, cut) in &case.cuttings {
+        let name = &m.cell_names[c];
+        let mut total = 0.0;
+        for s in &cut.subcells {
+            let p: Vec<[f64; 3]> = s.nodes.iter().map(|&i| cut.points[i].x).collect();
+            assert_eq!(p.len(), m.dim + 1, "{name}: sub-cell with {} nodes", p.len());
+            let v = measure(&p);
+            if m.dim == 3 {
+                assert!(v > 0.0, "{name}: sub-tetrahedron of volume {v}");
+            }
+            total += v.abs();
+        }
+        let vol = parent_measure(m, c);
+        assert!((total - vol).abs() <= 1e-12 * vol, "{name}: {total} vs {vol}");
+        for (k, s) in cut.subcells.iter().enumerate() {
+            for (f, &h) in s.he.iter().enumerate() {
+                if h == 0 {
+                    continue;
+                }
+                for &i in &s.nodes {
+                    let v = cut.points[i].lsn[f];
+                    assert!(v * h as f64 >= -1e-10, "{name}: sub-cell {k}, crack {f}: lsn {v} against he {h}");
+                }
+            }
+        }
+        for p in &cut.points {
+            if p.id < 1000 {
+                for (f, l) in case.lsn[&c].iter().enumerate() {
+                    assert_eq!(p.lsn[f], l[p.id as usize - 1]);
+                }
+            }
+        }
+        if cut.subcells.len() > if m.dim == 2 { 2 } else { 6 } || cut.points.iter().any(|p| p.id > 1000) {
+            ncut += 1;
+        }
+    }
+    let nsub = case.cuttings.values().map(|c| c.subcells.len()).sum();
+    (case.cuttings.len(), ncut, nsub)
+}
+
+/// The new nodes of POST_MAIL_XFEM for the X-FEM parents (`xpomax` /
+/// `xpoajm` / `xpoajn`, as `postmail::visual_mesh` does for quadratic
+/// parents): one node per (point, Heaviside tuple) of a parent, a global
+/// counter in base 36, NM / NP on a crack (side of the nearest crack active
+/// on the sub-cell), NX elsewhere. Only the X-FEM parents of the mesh's
+/// dimension are counted. Returns (name, coordinates, in NFISSU).
+fn names(case: &Case) -> Vec<(String, [f64; 3], bool)> {
+    let mut out = Vec::new();
+    for cut in case.cuttings.values() {
+        let mut seen: HashMap<(usize, Vec<i32>), ()> = HashMap::new();
+        for s in &cut.subcells {
+            for &pi in &s.nodes {
+                if seen.insert((pi, s.he.clone()), ()).is_some() {
+                    continue;
+                }
+                let p = &cut.points[pi];
+                let on = p.id > 1000 || p.lsn.contains(&0.0);
+                let prefix = if !on {
+                    "NX"
+                } else {
+                    let mut best = None;
+                    let mut min = f64::MAX;
+                    for (k, (&v, &h)) in p.lsn.iter().zip(&s.he).enumerate() {
+                        if v.abs() < min && h != 0 {
+                            min = v.abs();
+                            best = Some(k);
+                        }
+                    }
+                    match best {
+                        Some(k) if s.he[k] == -1 => "NM",
+                        _ => "NP",
+                    }
+                };
+                out.push((format!("{prefix}{}", base36(out.len() + 1)), p.x, on));
+            }
+        }
+    }
+    out
+}
+
+fn report(file: &str, case: &Case) {
+    let (n, ncut, nsub) = check(case);
+    let types: Vec<&str> = {
+        let mut t: Vec<&str> = case.cuttings.keys().map(|&c| case.mesh.cell_types[c].name()).collect();
+        t.dedup();
+        t
+    };
+    println!("{file}: {n} X-FEM parents {types:?}, {ncut} cut, {nsub} sub-cells");
+}
+
+#[test]
+fn ssnv173f_quad4_one_interface() {
+    let Some(case) = run("ssnv173f.mmed", None, &[Fiss { ln: |x| x[1] - 2.5, junction: None }]) else { return };
+    report("ssnv173f", &case);
+    assert!(case.cuttings.keys().all(|&c| case.mesh.cell_types[c] == CellType::Quad4));
+    let nodes = names(&case);
+    let nfissu: Vec<&(String, [f64; 3], bool)> = nodes.iter().filter(|n| n.2).collect();
+    assert!(!nfissu.is_empty());
+    // Every node on the interface is at y = 2.5, NM below / NP above it: as many of each.
+    for (name, x, _) in &nfissu {
+        assert!((x[1] - 2.5).abs() < 1e-12, "{name} at {x:?}");
+        assert!(name.starts_with("NM") || name.starts_with("NP"));
+    }
+    let nm = nfissu.iter().filter(|n| n.0.starts_with("NM")).count();
+    assert_eq!(2 * nm, nfissu.len());
+    println!(
+        "ssnv173f: {} new nodes, NFISSU {} (NM {nm}): {:?}",
+        nodes.len(),
+        nfissu.len(),
+        nfissu.iter().map(|n| (n.0.as_str(), n.1[0])).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn ssnv173b_hexa8_one_interface() {
+    let Some(case) = run("ssnv173b.mmed", None, &[Fiss { ln: |x| x[2] - 12.5, junction: None }]) else { return };
+    report("ssnv173b", &case);
+}
+
+/// wtnv143c itself goes quadratic (LINE_QUAD) before DEFI_FISS_XFEM
+/// (LN = Z−2.5): its linear HEXA8 mesh is only a geometry check here.
+#[test]
+fn wtnv143c_linear_mesh_hexa8_one_interface() {
+    let Some(case) = run("wtnv143c.mmed", None, &[Fiss { ln: |x| x[2] - 2.5, junction: None }]) else { return };
+    report("wtnv143c (linear mesh)", &case);
+}
+
+/// The three interfaces of ssnv513a / ssnv513c: FISS2 branches on FISS1
+/// (POINT (0,−5)), FISS3 on FISS2 (POINT (5,0)).
+fn three_cracks() -> [Fiss; 3] {
+    [
+        Fiss { ln: |x| x[1] - 1.0 - 0.5 * x[0], junction: None },
+        Fiss { ln: |x| x[0], junction: Some((0, [0.0, -5.0, 0.0])) },
+        Fiss { ln: |x| x[1], junction: Some((1, [5.0, 0.0, 0.0])) },
+    ]
+}
+
+/// The sub-domains of a junction cell: the tuples of Heaviside values.
+fn tuples(case: &Case) -> BTreeMap<Vec<i32>, usize> {
+    let mut t = BTreeMap::new();
+    for cut in case.cuttings.values() {
+        for s in &cut.subcells {
+            if s.he.len() == 3 {
+                *t.entry(s.he.clone()).or_insert(0) += 1;
+            }
+        }
+    }
+    t
+}
+
+#[test]
+fn ssnv511a_quad4_three_interfaces_with_junctions() {
+    let Some(case) = run("ssnv511a.mmed", None, &three_cracks()) else { return };
+    report("ssnv511a", &case);
+    let t = tuples(&case);
+    println!("ssnv511a: sub-cells per (he1, he2, he3) in cells seeing the 3 cracks: {t:?}");
+    // Four regions: above FISS1; below it, x < 0; x > 0 above FISS3; x > 0 below it.
+    for he in t.keys() {
+        assert!(
+            [vec![1, 0, 0], vec![-1, -1, 0], vec![-1, 1, 1], vec![-1, 1, -1]].contains(he),
+            "unexpected Heaviside tuple {he:?}"
+        );
+    }
+    let nodes = names(&case);
+    let nfissu: Vec<&(String, [f64; 3], bool)> = nodes.iter().filter(|n| n.2).collect();
+    println!("ssnv511a (ssnv513a): {} new nodes, NFISSU {}", nodes.len(), nfissu.len());
+    // The ssnv513a filters: NP nodes with x > 0.2, y < 0.2 (on FISS3, upper lip) ...
+    let np_f3: Vec<&&(String, [f64; 3], bool)> =
+        nfissu.iter().filter(|n| n.0.starts_with("NP") && n.1[0] > 0.2 && n.1[1] < 0.2).collect();
+    let nm_f3: Vec<&&(String, [f64; 3], bool)> =
+        nfissu.iter().filter(|n| n.0.starts_with("NM") && n.1[0] > 0.02 && n.1[1] < 0.2).collect();
+    println!("  NP, x > 0.2, y < 0.2: {:?}", np_f3.iter().map(|n| (n.0.as_str(), n.1[0], n.1[1])).collect::<Vec<_>>());
+    println!("  NM, x > 0.02, y < 0.2: {:?}", nm_f3.iter().map(|n| (n.0.as_str(), n.1[0], n.1[1])).collect::<Vec<_>>());
+    for n in np_f3.iter().chain(&nm_f3) {
+        assert!(n.1[1].abs() < 1e-12, "{} at {:?} is not on FISS3", n.0, n.1);
+    }
+    let lips = |p: &str| nfissu.iter().filter(|n| n.0.starts_with(p)).count();
+    println!("  NFISSU: NP {}, NM {}", lips("NP"), lips("NM"));
+}
+
+#[test]
+fn ssnv511c_hexa8_three_interfaces_with_junctions() {
+    let Some(case) = run("ssnv511c.mmed", None, &three_cracks()) else { return };
+    report("ssnv511c", &case);
+    let t = tuples(&case);
+    println!("ssnv511c: sub-cells per (he1, he2, he3) in cells seeing the 3 cracks: {t:?}");
+    for he in t.keys() {
+        assert!(
+            [vec![1, 0, 0], vec![-1, -1, 0], vec![-1, 1, 1], vec![-1, 1, -1]].contains(he),
+            "unexpected Heaviside tuple {he:?}"
+        );
+    }
+}
+
+#[test]
+fn ssnv186c_tria3_one_interface() {
+    let Some(case) = run("ssnv186c.mmed", None, &[Fiss { ln: |x| x[1] - 17.5, junction: None }]) else { return };
+    report("ssnv186c", &case);
+    assert!(case.cuttings.keys().all(|&c| case.mesh.cell_types[c] == CellType::Tria3));
+}
+
+#[test]
+fn ssnp118t_quad4_inclined_interface() {
+    let Some(case) = run(
+        "ssnp118t.mmed",
+        Some("G_CUBE"),
+        &[Fiss {
+            ln: |x| {
+                let t = 30f64.to_radians();
+                x[0] * t.cos() + x[1] * t.sin() - 0.4
+            },
+            junction: None,
+        }],
+    ) else {
+        return;
+    };
+    report("ssnp118t", &case);
+}
