@@ -15,7 +15,7 @@ use super::model::model_of;
 use super::statics::{elastic_of, load_value, loads, mat_param, solver_options};
 use super::Ctx;
 use crate::catalog::args::Args;
-use crate::concepts::model::{Contact, LoadItem, MaterialField, Role};
+use crate::concepts::model::{Contact, LoadItem, LoadValue, MaterialField, Role};
 use crate::concepts::result::{Field, ResultData, Step};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
@@ -716,10 +716,26 @@ fn constraints(
                 cons.impose(std + d, v);
                 blocked_dir[d] = true;
                 // A function-valued condition prescribes the trace on every
-                // side of the node (xddlimf): the Heaviside parts are zero.
-                if load.functional {
-                    for &b in &xd.sets[n] {
-                        cons.impose(b + d, 0.0);
+                // side of the node (xddlimf): each Heaviside part makes the
+                // trace match the function just across the interface.
+                if load.functional && !xd.sets[n].is_empty() {
+                    let LoadValue::Func(f) = value else { unreachable!("functional load") };
+                    let same: BTreeSet<usize> = load
+                        .items
+                        .iter()
+                        .filter_map(|it| match it {
+                            LoadItem::Dof { node, component, value: LoadValue::Func(g) }
+                                if component == c && Rc::ptr_eq(g, f) =>
+                            {
+                                Some(*node)
+                            }
+                            _ => None,
+                        })
+                        .collect();
+                    for (j, h) in trace_sets(mesh, xm, n, &same, f, t).map_err(|e| {
+                        a.err("EXCIT", format!("load {}: {c} at node {}: {e}", lc.label(), mesh.node_names[n]))
+                    })? {
+                        cons.impose(xd.sets[n][j] + d, mult * h);
                     }
                 }
             } else if let Some((j, d)) = heaviside_component(c).filter(|&(_, d)| d < ndim) {
@@ -907,4 +923,104 @@ fn equilibrate(k: &faer::sparse::SparseColMat<usize, f64>) -> (faer::sparse::Spa
 
 fn converged_check(iters: usize, rel: f64, abs: f64, resi_rela: Option<f64>, resi_maxi: Option<f64>) -> bool {
     iters > 0 && resi_rela.map(|tol| rel <= tol).unwrap_or(true) && resi_maxi.map(|tol| abs <= tol).unwrap_or(true)
+}
+
+/// The Heaviside parts of node `n` under a function-valued DDL_IMPO of the
+/// node set `same` (`xddlimf`): along each mesh edge from `n` to another
+/// node `k` of the set where an interface crosses, the set of `n` for the
+/// region on `k`'s side is fixed so that the trace there equals the function
+/// just beyond the crossing: N_n(a_n + 2h) + N_k a_k = f(x_c⁺) on a linear
+/// edge, with a_n = f(x_n), a_k = f(x_k). Sets not reached this way are zero
+/// (the function is continuous around them). A quadratic edge is handled when
+/// the function is continuous across the crossing (then h = 0); a
+/// discontinuous one stops the run.
+fn trace_sets(
+    mesh: &crate::mesh::Mesh,
+    xm: &XfemModel,
+    n: usize,
+    same: &BTreeSet<usize>,
+    f: &ConceptRef,
+    t: f64,
+) -> Result<Vec<(usize, f64)>> {
+    const EPS: f64 = 2e-6;
+    let eval = |x: &[f64; 3]| super::statics::eval_at(f, x, t);
+    let mut out: Vec<(usize, f64)> = (0..xm.node_sets[n].len()).map(|j| (j, 0.0)).collect();
+    let mut done = vec![false; out.len()];
+    let mut jump = false;
+    for (c, nodes) in mesh.cells.iter().enumerate() {
+        let ct = mesh.cell_types[c];
+        if ct.dim() != mesh.dim || !nodes.contains(&n) {
+            continue;
+        }
+        for e in crate::xfem::levelset::edges(ct) {
+            let (ia, ib) = (nodes[e[0]], nodes[e[1]]);
+            let k = if ia == n {
+                ib
+            } else if ib == n {
+                ia
+            } else {
+                continue;
+            };
+            if !same.contains(&k) {
+                continue;
+            }
+            // The first crack that changes sign along the edge.
+            let Some(g) = (0..xm.lsn.len()).find(|&g| xm.lsn[g][n] * xm.lsn[g][k] < 0.0) else { continue };
+            let alpha = xm.lsn[g][n] / (xm.lsn[g][n] - xm.lsn[g][k]);
+            let (xn, xk) = (mesh.coords[n], mesh.coords[k]);
+            let at = |s: f64| -> [f64; 3] { [0, 1, 2].map(|i| xn[i] + s * (xk[i] - xn[i])) };
+            let beyond = at(alpha + EPS * (1.0 - alpha));
+            let before = at(alpha * (1.0 - EPS));
+            // Region just beyond the crossing, from the cell's nodal level sets.
+            let xi = crate::fem::reference::inverse_map(
+                ct,
+                &nodes.iter().map(|&m| mesh.coords[m]).collect::<Vec<_>>(),
+                &beyond,
+                &Default::default(),
+            )
+            .map_err(|e| Error::runtime(format!("locating the crossing: {e}")))?
+            .xi;
+            let ff = crate::fem::reference::shape(ct, &xi);
+            let region =
+                crate::xfem::region_code(&crate::xfem::model::point_signs(&xm.lsn, &xm.masters, nodes, &ff, &[], &[]));
+            let Some(j) = xm.node_sets[n].iter().position(|&r| r == region) else { continue };
+            let (fn_, fk, fc) = (eval(&xn)?, eval(&xk)?, eval(&beyond)?);
+            let quadratic = ct.nnodes() > ct.nvertices();
+            let fb = eval(&before)?;
+            let discontinuous = (fc - fb).abs() > 1e-9 * fc.abs().max(fb.abs()).max(1e-300);
+            jump |= discontinuous;
+            let h = if quadratic {
+                if discontinuous {
+                    return Err(Error::runtime(
+                        "a function discontinuous across the interface on a quadratic edge is not supported yet",
+                    ));
+                }
+                0.0
+            } else {
+                (fc - alpha * fk) / (2.0 * (1.0 - alpha)) - fn_ / 2.0
+            };
+            if done[j] && (out[j].1 - h).abs() > 1e-9 * h.abs().max(out[j].1.abs()).max(1e-300) {
+                return Err(Error::runtime(format!(
+                    "two edges ask different Heaviside values ({} and {h}) for one set",
+                    out[j].1
+                )));
+            }
+            out[j] = (j, h);
+            done[j] = true;
+        }
+    }
+    // A set no cut edge of the condition reaches keeps h = 0, which is exact
+    // for a function continuous across the interfaces. For a discontinuous
+    // one Code_Aster ties the whole field at a point of the set's region
+    // (xddlimf's second case), which we do not do yet.
+    if jump {
+        if let Some(j) = done.iter().position(|d| !d) {
+            return Err(Error::runtime(format!(
+                "the function jumps across an interface and the node's Heaviside set {} is not reached along a cut \
+                 edge of the condition: xddlimf's point relation is not supported yet",
+                j + 1
+            )));
+        }
+    }
+    Ok(out)
 }

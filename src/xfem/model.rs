@@ -154,6 +154,22 @@ pub fn point_signs(
         let refs: Vec<&[f64]> = one.iter().map(|v| v.as_slice()).collect();
         s[g] = if m == 1 { sign(values[g]) } else { node_signs(&refs, masters, 0)[g] };
     }
+    // A branch does not exist where its master does not, nor on the master's
+    // side it does not reach — also when the cell cut it as a full interface
+    // because its master is not among the cell's cracks (Code_Aster's
+    // per-cell view; over the whole model the region is the same).
+    if m > 1 {
+        for _ in 0..m {
+            for g in 0..m {
+                if let Some((mm, c)) = masters[g] {
+                    let sm = f64::from(s[mm]);
+                    if s[mm] == 0 || (c > 0.0 && c * sm >= 0.0) || (c < 0.0 && c * sm > 0.0) {
+                        s[g] = 0;
+                    }
+                }
+            }
+        }
+    }
     s
 }
 
