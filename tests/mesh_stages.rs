@@ -456,10 +456,10 @@ fn bad_input_is_a_located_error() {
     let err = run_fail(
         &dir,
         "fmt",
-        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED')\nIMPR_RESU(FORMAT='GMSH', RESU=_F(MAILLAGE=MA))\nFIN()\n",
+        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED')\nIMPR_RESU(FORMAT='IDEAS', RESU=_F(MAILLAGE=MA))\nFIN()\n",
         &[(20, &good)],
     );
-    assert!(err.contains("fmt.comm:3:") && err.contains("FORMAT='GMSH' is not supported yet"), "{err}");
+    assert!(err.contains("fmt.comm:3:") && err.contains("FORMAT='IDEAS' is not supported yet"), "{err}");
     // `aster mesh info` on damaged files.
     for f in [&truncated, &text_file] {
         let o = aster().args(["mesh", "info"]).arg(f).output().unwrap();

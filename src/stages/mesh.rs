@@ -1010,10 +1010,14 @@ pub fn impr_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     if format == "RESULTAT" {
         return super::print::impr_resu_text(ctx, a);
     }
+    if format == "GMSH" {
+        return super::gmsh::impr_resu_gmsh(ctx, a);
+    }
     if format != "MED" {
-        return Err(
-            a.err("FORMAT", format!("IMPR_RESU FORMAT='{format}' is not supported yet (only 'MED' and 'RESULTAT')"))
-        );
+        return Err(a.err(
+            "FORMAT",
+            format!("IMPR_RESU FORMAT='{format}' is not supported yet (only 'MED', 'RESULTAT' and 'GMSH')"),
+        ));
     }
     let mut out = MedOut::default();
     if let Some(v) = a.text("VERSION_MED").filter(|_| a.given("VERSION_MED")) {

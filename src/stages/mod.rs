@@ -7,6 +7,7 @@
 pub mod control;
 pub mod fields;
 pub mod functions;
+pub mod gmsh;
 pub mod mesh;
 pub mod model;
 pub mod nonlinear;

@@ -268,8 +268,11 @@ fn real_format(fmt: &str) -> String {
     format!("%{rest}{conv}")
 }
 
-fn cell_text(c: &Cell, fmt_r: &str) -> String {
+fn cell_text(c: &Cell, fmt_r: &str, format: &str) -> String {
     match c {
+        // AGRAF is TABLEAU with a backslash before the empty-cell marker
+        // (Code_Aster's `ReprTable`).
+        Cell::Empty if format == "AGRAF" => "\\-".into(),
         Cell::Empty => "-".into(),
         Cell::Int(i) => i.to_string(),
         Cell::Real(r) => percent(&real_format(fmt_r), &Value::Float(*r)).unwrap_or_else(|_| r.to_string()),
@@ -277,13 +280,15 @@ fn cell_text(c: &Cell, fmt_r: &str) -> String {
     }
 }
 
-/// The table as text: `TABLEAU` (aligned columns) or `ASTER` (re-readable).
+/// The table as text: `TABLEAU` (aligned columns), `ASTER` (re-readable) or
+/// `AGRAF` (TABLEAU, empty cells written `\-`).
 pub fn write(t: &Table, name: &str, format: &str, fmt_r: &str, params: Option<&[String]>) -> String {
     let cols: Vec<&Column> = match params {
         Some(p) => p.iter().filter_map(|n| t.columns.iter().find(|c| &c.name == n)).collect(),
         None => t.columns.iter().collect(),
     };
-    let cells: Vec<Vec<String>> = cols.iter().map(|c| c.cells.iter().map(|x| cell_text(x, fmt_r)).collect()).collect();
+    let cells: Vec<Vec<String>> =
+        cols.iter().map(|c| c.cells.iter().map(|x| cell_text(x, fmt_r, format)).collect()).collect();
     let widths: Vec<usize> = cols
         .iter()
         .zip(&cells)

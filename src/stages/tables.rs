@@ -650,7 +650,7 @@ pub fn impr_table(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     }
     let params = a.texts("NOM_PARA");
     let format = a.text("FORMAT").unwrap_or("TABLEAU");
-    if !matches!(format, "TABLEAU" | "ASTER") {
+    if !matches!(format, "TABLEAU" | "ASTER" | "AGRAF") {
         return Err(a.err("FORMAT", format!("FORMAT='{format}' is not supported yet")));
     }
     let text = table_io::write(
