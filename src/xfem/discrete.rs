@@ -85,6 +85,19 @@ impl XDofs {
     }
 }
 
+/// What each unknown of a cell is, in [`XDofs::cell_dofs`] order: (local
+/// node, enrichment set or None for the standard part, component).
+fn cell_columns(nodes: &[usize], xm: &XfemModel, ndim: usize) -> Vec<(usize, Option<usize>, usize)> {
+    let mut cols = Vec::new();
+    for (a, &n) in nodes.iter().enumerate() {
+        cols.extend((0..ndim).map(|i| (a, None, i)));
+        for j in 0..xm.node_sets[n].len() {
+            cols.extend((0..ndim).map(|i| (a, Some(j), i)));
+        }
+    }
+    cols
+}
+
 /// Strain–displacement rows (engineering shear, Code_Aster's order) of a
 /// unit displacement along `i` with shape gradient `g`.
 fn b_col(ndim: usize, g: &[f64; 3], i: usize) -> [f64; 6] {
@@ -248,17 +261,7 @@ pub fn bulk_stiffness(
         v
     };
     // Columns: (node index in cell, factor selector) per unknown.
-    let mut cols: Vec<(usize, Option<usize>, usize)> = Vec::new(); // (local node, set, component)
-    for (a, &n) in nodes.iter().enumerate() {
-        for i in 0..ndim {
-            cols.push((a, None, i));
-        }
-        for j in 0..xm.node_sets[n].len() {
-            for i in 0..ndim {
-                cols.push((a, Some(j), i));
-            }
-        }
-    }
+    let cols = cell_columns(nodes, xm, ndim);
     let nd = cols.len();
     let mut k = vec![0.0; nd * nd];
     let mut b = vec![[0.0; 6]; nd];
@@ -615,17 +618,7 @@ pub fn couplings(
         pk.dedup();
         let npk = pk.len();
         // Cell unknown layout (XDofs::cell_dofs order).
-        let mut cols: Vec<(usize, Option<usize>, usize)> = Vec::new();
-        for (a, &n) in nodes.iter().enumerate() {
-            for i in 0..ndim {
-                cols.push((a, None, i));
-            }
-            for j in 0..xm.node_sets[n].len() {
-                for i in 0..ndim {
-                    cols.push((a, Some(j), i));
-                }
-            }
-        }
+        let cols = cell_columns(nodes, xm, ndim);
         let nd = cols.len();
         let mut cm = vec![0.0; nd * npk * ndim];
         let mut mm = vec![0.0; npk * npk];
