@@ -356,3 +356,98 @@ fn ssnp118t_quad4_inclined_interface() {
     };
     report("ssnp118t", &case);
 }
+
+/// The model of ssnv245a / ssnv173f on TOUT of ssnv173f.mmed: the X-FEM
+/// parents are the QUAD4 cells and the boundary SEG2 cells with a
+/// Heaviside node (te0514 with ndime < ndim), all in one ascending
+/// traversal of POST_MAIL_XFEM.
+fn visual_tout(ln: fn(&[f64; 3]) -> f64) -> Option<aster::xfem::postmail::VisualMesh> {
+    use aster::xfem::postmail::{visual_mesh, Prefixes};
+    use aster::xfem::topose_linear::{orient_boundary, topose_linear_boundary};
+    let m = mesh("ssnv173f.mmed")?;
+    let mc = Concept::new(ConceptKind::Maillage, ConceptData::Mesh(m.clone()));
+    let l = m.coords.iter().map(ln).collect();
+    let k = build_interface(mc, m.clone(), l, None, &[], None).unwrap_or_else(|e| panic!("{}", e.msg));
+    let mut cuttings = BTreeMap::new();
+    let model: Vec<usize> = (0..m.ncells()).filter(|&c| m.cell_types[c] != CellType::Poi1).collect();
+    for &c in &model {
+        if k.heaviside_cells.binary_search(&c).is_err() {
+            continue;
+        }
+        let nodes = &m.cells[c];
+        let cic = [CrackInCell { lsn: nodes.iter().map(|&n| k.lsn[n]).collect(), master: None }];
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| m.coords[n]).collect();
+        let cut = if m.cell_types[c].dim() < m.dim {
+            topose_linear_boundary(m.cell_types[c], m.dim, &coords, &cic)
+        } else {
+            topose_linear(m.cell_types[c], &coords, &cic)
+        }
+        .unwrap_or_else(|e| panic!("{}: {e}", m.cell_names[c]));
+        let mut cut = cut;
+        if m.cell_types[c].dim() < m.dim {
+            // xoripe: outward of the support cell.
+            let v = (0..m.ncells())
+                .find(|&v| m.cell_types[v].dim() == m.dim && nodes.iter().all(|n| m.cells[v].contains(n)))
+                .unwrap();
+            let g = |cs: &[usize]| [0, 1, 2].map(|j| cs.iter().map(|&n| m.coords[n][j]).sum::<f64>() / cs.len() as f64);
+            let (gb, gp) = (g(nodes), g(&m.cells[v]));
+            orient_boundary(&mut cut, m.dim, &[0, 1, 2].map(|j| gb[j] - gp[j]));
+        }
+        cuttings.insert(c, cut);
+    }
+    Some(visual_mesh(&m, &model, &cuttings, &Prefixes::default()).unwrap())
+}
+
+/// ssnv245a (D_PLAN on TOUT of ssnv173f.mmed, LN = Y − 2.6): the boundary
+/// SEG2 cells come first in the mesh (MED type order), M8 (uncut, on the
+/// enriched node N6) makes NX1, NX2; M9 (N6 → N7, x = 1) is cut at
+/// (1, 2.6) into (101, N6) and (101, N7), and xoripe turns the first one
+/// outward, (N6, 101): NX3, NM4, NP5, NX6 — the NP5 (DX = −0.024, upper
+/// lip) and NM4 (DX = +0.026, lower lip) that ssnv245a tests. On LIG4 (x = 0)
+/// M15 (N10 → N11) is turned too, (N10, 101), (101, N11): NX11, NPC, NMD,
+/// NX14; the QUAD4 parents follow.
+#[test]
+fn ssnv245a_boundary_parents_name_np5_and_nm4() {
+    let Some(v) = visual_tout(|x| x[1] - 2.6) else { return };
+    let at = |name: &str| {
+        let n = v.mesh.node_names.iter().position(|s| s == name).unwrap_or_else(|| panic!("{name} missing"));
+        v.mesh.coords[n]
+    };
+    for name in ["NM4", "NP5"] {
+        let x = at(name);
+        assert!((x[0] - 1.0).abs() < 1e-12 && (x[1] - 2.6).abs() < 1e-12, "{name} at {x:?}");
+    }
+    for name in ["NPC", "NMD"] {
+        let x = at(name);
+        assert!(x[0].abs() < 1e-12 && (x[1] - 2.6).abs() < 1e-12, "{name} at {x:?}");
+    }
+    // Parents: M8, M9, M10 (LIG2), M14, M15, M16 (LIG4), then M2, M3, M4.
+    let order: Vec<usize> = v.parents.iter().map(|p| p.cell).collect();
+    assert_eq!(order, vec![2, 3, 4, 8, 9, 10, 13, 14, 15]);
+    assert_eq!(v.parents[1].node_counters, 3..7);
+    let g = &v.mesh.node_groups["NFISSU"];
+    let names: Vec<&str> = g.iter().map(|&n| v.mesh.node_names[n].as_str()).collect();
+    assert_eq!(&names[..4], &["NM4", "NP5", "NPC", "NMD"]);
+    for &n in g {
+        assert!((v.mesh.coords[n][1] - 2.6).abs() < 1e-12);
+    }
+}
+
+/// ssnv173f's LN = Y − 2.5 on the model of ssnv245a (TOUT): the same
+/// traversal; the boundary lip nodes are NM4 / NP5 (x = 1) and NPC / NMD
+/// (x = 0), then the QUAD4 parent M3's.
+#[test]
+fn ssnv173f_level_set_with_boundary_parents() {
+    let Some(v) = visual_tout(|x| x[1] - 2.5) else { return };
+    let g = &v.mesh.node_groups["NFISSU"];
+    let named: Vec<(&str, [f64; 3])> = g.iter().map(|&n| (v.mesh.node_names[n].as_str(), v.mesh.coords[n])).collect();
+    assert_eq!(named[0].0, "NM4");
+    assert_eq!(named[1].0, "NP5");
+    assert_eq!(named[2].0, "NPC");
+    assert_eq!(named[3].0, "NMD");
+    for (name, x) in &named {
+        assert!((x[1] - 2.5).abs() < 1e-12, "{name} at {x:?}");
+    }
+    let nm = named.iter().filter(|n| n.0.starts_with("NM")).count();
+    assert_eq!(2 * nm, named.len());
+}

@@ -12,7 +12,7 @@ use crate::concepts::ConceptData;
 use crate::diag::{Error, Result};
 use crate::xfem::model::XfemModel;
 use crate::xfem::postmail::{visual_mesh, NodeOrigin, Prefixes, VisualMesh};
-use crate::xfem::topose::{topose, CrackInCell};
+use crate::xfem::topose::{topose, topose_boundary, CrackInCell};
 use crate::xfem::{build_interface, crack_of, Crack};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
@@ -217,8 +217,67 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
             .map_err(|e| a.err("FISSURE", format!("cutting cell {}: {e}", mesh.cell_names[c])))?;
         cuttings.insert(c, (seen, cut));
     }
+    // The boundary cells of the model (skin elements) with a Heaviside node
+    // are X-FEM elements too: TOPOSE cuts them (te0514 with ndime < ndim)
+    // and POST_MAIL_XFEM makes sub-cells of them, which moves its node
+    // counter. Only the linear types are cut; the others are left out, and
+    // POST_MAIL_XFEM refuses a model with such a cell (see `visual_of`).
+    let mut boundary = BTreeMap::new();
+    for (c, el) in elements.iter().enumerate() {
+        if !el.as_ref().is_some_and(|e| e.role == crate::concepts::model::Role::Skin)
+            || mesh.cell_types[c].dim() >= mesh.dim
+            || mesh.cell_types[c] == crate::mesh::CellType::Poi1
+        {
+            continue;
+        }
+        let seen: Vec<usize> = (0..cracks.len()).filter(|&g| hcells[g].binary_search(&c).is_ok()).collect();
+        if seen.is_empty()
+            || !matches!(
+                mesh.cell_types[c],
+                crate::mesh::CellType::Seg2 | crate::mesh::CellType::Tria3 | crate::mesh::CellType::Quad4
+            )
+        {
+            continue;
+        }
+        let nodes = &mesh.cells[c];
+        let cic: Vec<CrackInCell> = seen
+            .iter()
+            .map(|&g| CrackInCell {
+                lsn: nodes.iter().map(|&n| lsn[g][n]).collect(),
+                master: masters[g].and_then(|(m, coef)| seen.iter().position(|&s| s == m).map(|p| (p, coef))),
+            })
+            .collect();
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let mut cut = topose_boundary(mesh.cell_types[c], mesh.dim, &coords, &cic)
+            .map_err(|e| a.err("FISSURE", format!("cutting boundary cell {}: {e}", mesh.cell_names[c])))?;
+        if mesh.cell_types[c].dim() + 1 == mesh.dim {
+            // xoripe: the sub-cells turned outward of the support cell
+            // (`utmasu`: here the lowest numbered cell of the mesh's
+            // dimension holding all the boundary cell's nodes).
+            let support = (0..mesh.ncells())
+                .find(|&v| mesh.cell_types[v].dim() == mesh.dim && nodes.iter().all(|n| mesh.cells[v].contains(n)));
+            let Some(v) = support else {
+                return Err(a.err(
+                    "FISSURE",
+                    format!("boundary cell {} is on no cell of dimension {} (XFEM2_59)", mesh.cell_names[c], mesh.dim),
+                ));
+            };
+            let centroid = |cs: &[usize]| {
+                let mut g = [0.0; 3];
+                for &n in cs {
+                    for (gj, xj) in g.iter_mut().zip(&mesh.coords[n]) {
+                        *gj += xj / cs.len() as f64;
+                    }
+                }
+                g
+            };
+            let (gb, gp) = (centroid(nodes), centroid(&mesh.cells[v]));
+            crate::xfem::topose_linear::orient_boundary(&mut cut, mesh.dim, &[0, 1, 2].map(|j| gb[j] - gp[j]));
+        }
+        boundary.insert(c, (seen, cut));
+    }
     let pretraitements = a.text("PRETRAITEMENTS").unwrap_or("AUTO");
-    let xm = XfemModel::new(
+    let mut xm = XfemModel::new(
         &mesh,
         &model_cells,
         cracks.clone(),
@@ -231,6 +290,7 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
         pretraitements,
     )
     .map_err(|e| a.err("FISSURE", e))?;
+    xm.boundary = boundary;
     let nsub: usize = xm.cells.values().map(|c| c.cutting.subcells.len()).sum();
     let ncut = xm.cells.values().filter(|c| {
         let mut r = c.regions.clone();
@@ -242,6 +302,14 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
     let _ = writeln!(s, "  MODI_MODELE_XFEM ({} crack(s), CONTACT='{}'):", cracks.len(), xm.contact);
     let _ = writeln!(s, "    X-FEM cells                          : {} ({} cut)", xm.cells.len(), ncut.count());
     let _ = writeln!(s, "    sub-cells                            : {nsub}");
+    if !xm.boundary.is_empty() {
+        let nb: usize = xm.boundary.values().map(|(_, c)| c.subcells.len()).sum();
+        let _ = writeln!(
+            s,
+            "    X-FEM boundary cells                 : {} ({nb} sub-cells, for POST_MAIL_XFEM)",
+            xm.boundary.len()
+        );
+    }
     let enr = xm.node_sets.iter().filter(|v| !v.is_empty()).count();
     let _ = writeln!(s, "    nodes with Heaviside sets            : {enr} ({} sets)", xm.n_sets());
     if !xm.dropped_sets.is_empty() {
@@ -346,8 +414,27 @@ fn visual_of(model: &crate::concepts::ConceptRef, prefixes: &Prefixes) -> Result
     };
     let mesh = m.current_mesh();
     let model_cells: Vec<usize> = (0..mesh.ncells()).filter(|&c| m.elements[c].is_some()).collect();
-    let cuttings: BTreeMap<usize, crate::xfem::topose::Cutting> =
+    // X-FEM boundary cells MODI_MODELE_XFEM could not cut: their sub-cells
+    // would move the node counter, so the names would not be Code_Aster's.
+    if let Some(&c) = model_cells.iter().find(|&&c| {
+        let t = mesh.cell_types[c];
+        t != crate::mesh::CellType::Poi1
+            && t.dim() < mesh.dim
+            && !xm.boundary.contains_key(&c)
+            && mesh.cells[c].iter().any(|&n| xm.enriched.iter().any(|e| e[n]))
+    }) {
+        return Err(Error::runtime(format!(
+            "{}: the boundary cell {} ({}) of the model has a Heaviside-enriched node; Code_Aster cuts it \
+             into sub-cells, which is only supported for SEG2, TRIA3 and QUAD4 (the node names would differ)",
+            model.label(),
+            mesh.cell_names[c],
+            mesh.cell_types[c].name()
+        )));
+    }
+    // Bulk and boundary parents, in one ascending traversal (xpomax).
+    let mut cuttings: BTreeMap<usize, crate::xfem::topose::Cutting> =
         xm.cells.iter().map(|(&c, xc)| (c, xc.cutting.clone())).collect();
+    cuttings.extend(xm.boundary.iter().map(|(&c, (_, cut))| (c, cut.clone())));
     let vm = visual_mesh(&mesh, &model_cells, &cuttings, prefixes).map_err(Error::runtime)?;
     Ok((vm, xm))
 }
@@ -414,7 +501,6 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         }
         let no = out_comps.len();
         let mut out = vec![f64::NAN; vm.mesh.nnodes() * no];
-        let hcol = |j: usize, d: usize| idx(&format!("H{}{}", j + 1, ["X", "Y", "Z"][d]));
         // A cell of each node (for the pressure at mid-side nodes).
         let mut cell_of = vec![usize::MAX; mesh.nnodes()];
         for (c, nodes) in mesh.cells.iter().enumerate() {
@@ -438,34 +524,15 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                     }
                 }
                 NodeOrigin::Xfem { parent, xi, he, .. } => {
-                    let t = mesh.cell_types[*parent];
-                    let nodes = &mesh.cells[*parent];
-                    let ff = crate::fem::reference::shape(t, xi);
                     let xc = &xm.cells[parent];
-                    let s = crate::xfem::model::point_signs(&xm.lsn, &xm.masters, nodes, &ff, &xc.cracks, he);
-                    let region = crate::xfem::region_code(&s);
-                    for d in 0..ndim {
-                        let mut u = 0.0;
-                        for (a_, &n) in nodes.iter().enumerate() {
-                            let mut un = values[n * nc + d];
-                            for j in 0..xm.node_sets[n].len() {
-                                let psi = xm.psi(n, j, region);
-                                if psi != 0.0 {
-                                    let k = hcol(j, d).expect("Heaviside component of DEPL");
-                                    un += psi * values[n * nc + k];
-                                }
-                            }
-                            u += ff[a_] * un;
-                        }
-                        row[d] = u;
-                    }
-                    if hm {
-                        // Linear pressure on the vertices.
-                        let vt = crate::fem::elasticity::vertex_type(t);
-                        let lin = crate::fem::reference::shape(vt, xi);
-                        let k = idx("PRE1").unwrap();
-                        row[ndim] = nodes.iter().zip(&lin).map(|(&n, f)| f * values[n * nc + k]).sum();
-                    }
+                    xfem_value(&mesh, &xm, *parent, xi, &xc.cracks, he, values, nc, hm, &idx, row);
+                }
+                NodeOrigin::Boundary { parent, he, bulk, bulk_xi, .. } => {
+                    // The field of the bulk cell holding the boundary parent,
+                    // in the region given by the boundary sub-cell's
+                    // Heaviside values (over the boundary cell's cracks).
+                    let cracks = &xm.boundary[parent].0;
+                    xfem_value(&mesh, &xm, *bulk, bulk_xi, cracks, he, values, nc, hm, &idx, row);
                 }
             }
         }
@@ -479,6 +546,53 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         loads: Vec::new(),
         steps,
     })))
+}
+
+/// The displacement (and the linear pressure) at reference point `xi` of
+/// cell `c`, in the region of the sign tuple made of `he` for the cracks
+/// `cracks` (model indices) and of the level sets for the others.
+#[allow(clippy::too_many_arguments)]
+fn xfem_value(
+    mesh: &crate::mesh::Mesh,
+    xm: &XfemModel,
+    c: usize,
+    xi: &[f64; 3],
+    cracks: &[usize],
+    he: &[i32],
+    values: &[f64],
+    nc: usize,
+    hm: bool,
+    idx: &dyn Fn(&str) -> Option<usize>,
+    row: &mut [f64],
+) {
+    let ndim = mesh.dim;
+    let t = mesh.cell_types[c];
+    let nodes = &mesh.cells[c];
+    let ff = crate::fem::reference::shape(t, xi);
+    let s = crate::xfem::model::point_signs(&xm.lsn, &xm.masters, nodes, &ff, cracks, he);
+    let region = crate::xfem::region_code(&s);
+    for d in 0..ndim {
+        let mut u = 0.0;
+        for (a_, &n) in nodes.iter().enumerate() {
+            let mut un = values[n * nc + d];
+            for j in 0..xm.node_sets[n].len() {
+                let psi = xm.psi(n, j, region);
+                if psi != 0.0 {
+                    let k = idx(&format!("H{}{}", j + 1, ["X", "Y", "Z"][d])).expect("Heaviside component of DEPL");
+                    un += psi * values[n * nc + k];
+                }
+            }
+            u += ff[a_] * un;
+        }
+        row[d] = u;
+    }
+    if hm {
+        // Linear pressure on the vertices.
+        let vt = crate::fem::elasticity::vertex_type(t);
+        let lin = crate::fem::reference::shape(vt, xi);
+        let k = idx("PRE1").unwrap();
+        row[ndim] = nodes.iter().zip(&lin).map(|(&n, f)| f * values[n * nc + k]).sum();
+    }
 }
 
 /// The (linear) pressure at a mesh node: its own value at a vertex, the

@@ -48,6 +48,11 @@ pub struct XfemModel {
     pub contact: String,
     /// The X-FEM cells.
     pub cells: BTreeMap<usize, XfemCell>,
+    /// The X-FEM BOUNDARY cells (skin elements of the model with a
+    /// Heaviside-enriched node): the cracks each one sees (model order) and
+    /// its TOPOSE cutting. Kept apart from `cells`, which the solver
+    /// integrates over: they only matter to POST_MAIL_XFEM's node names.
+    pub boundary: BTreeMap<usize, (Vec<usize>, Cutting)>,
     /// Own region code of every node (`xlsjon` + `xcalc_code`).
     pub node_region: Vec<i32>,
     /// Enrichment sets of every node: the region codes, in set order.
@@ -268,6 +273,7 @@ impl XfemModel {
             enriched,
             contact,
             cells,
+            boundary: BTreeMap::new(),
             node_region,
             node_sets,
             dropped_sets: Vec::new(),

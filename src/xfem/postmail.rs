@@ -51,6 +51,32 @@ pub enum NodeOrigin {
         xi: [f64; 3],
         he: Vec<i32>,
     },
+    /// A point of the cutting of an X-FEM BOUNDARY parent (a skin cell of
+    /// lower dimension than the mesh). Its field is the one of the bulk cell
+    /// of the model that holds the boundary cell: `bulk` is the lowest
+    /// numbered cell of the model, of the mesh's dimension, whose nodes
+    /// include all of the boundary cell's (it has the boundary cell's
+    /// Heaviside node, so it is an X-FEM cell too), and `bulk_xi` the
+    /// point's reference coordinates in it (the boundary cell's shape
+    /// functions applied to the reference coordinates of its nodes in the
+    /// bulk cell: exact for the linear types, whose face map is the
+    /// restriction of the cell's). On a face shared by two bulk cells the
+    /// field of a region is the same from both.
+    Boundary {
+        /// The boundary parent (index in the original mesh).
+        parent: usize,
+        /// The point's TOPOSE id in the boundary parent.
+        id: u32,
+        /// Reference coordinates in the boundary parent.
+        xi: [f64; 3],
+        /// Heaviside values of the boundary sub-cell (one per crack of the
+        /// boundary parent).
+        he: Vec<i32>,
+        /// The bulk cell evaluated.
+        bulk: usize,
+        /// Reference coordinates in `bulk`.
+        bulk_xi: [f64; 3],
+    },
 }
 
 /// What POST_MAIL_XFEM made for one X-FEM parent.
@@ -124,7 +150,11 @@ fn node_prefix<'a>(id: u32, lsn: &[f64], he: &[i32], p: &'a Prefixes) -> (&'a st
 
 /// Build the visual mesh of POST_MAIL_XFEM. `model_cells`: the cells of the
 /// model (any order; POI1 cells are ignored); `cuttings`: the TOPOSE
-/// cutting of every X-FEM parent (every cell of the model with sub-cells).
+/// cutting of every X-FEM parent (every cell of the model with sub-cells),
+/// the boundary ones (SEG2 / TRIA3 / QUAD4 skin cells, SEG2 / TRIA3
+/// sub-cells) included: all are traversed in one ascending order, as
+/// `xpomax` does, and a boundary parent's nodes get
+/// [`NodeOrigin::Boundary`].
 /// Classic cells are the other cells of the model.
 ///
 /// Cell groups: as `xpodim`/`xpoco1`/`xpoajm`, every cell group of the
@@ -185,14 +215,49 @@ pub fn visual_mesh(
         add_to_groups(&mut out, c, idx);
     }
 
+    // Cells of the model of the mesh's dimension, by node (for the bulk
+    // cell of a boundary parent).
+    let mut bulk_of_node: HashMap<usize, Vec<usize>> = HashMap::new();
+    for &c in &cells {
+        if mesh.cell_types[c].dim() == mesh.dim {
+            for &n in &mesh.cells[c] {
+                bulk_of_node.entry(n).or_default().push(c);
+            }
+        }
+    }
+
     let mut on_crack: Vec<usize> = Vec::new();
     let mut parents = Vec::new();
     let (mut inntot, mut inmtot) = (0usize, 0usize);
     for (&parent, cut) in cuttings {
         let dim = mesh.cell_types[parent].dim();
+        // A boundary parent: the bulk cell holding it and the reference
+        // coordinates of its nodes there.
+        let bulk: Option<(usize, Vec<[f64; 3]>)> = if dim < mesh.dim {
+            let pn = &mesh.cells[parent];
+            let b = bulk_of_node
+                .get(&pn[0])
+                .and_then(|cs| cs.iter().copied().filter(|&c| pn.iter().all(|n| mesh.cells[c].contains(n))).min())
+                .ok_or_else(|| {
+                    format!(
+                        "POST_MAIL_XFEM: the X-FEM boundary cell {} is on no cell of the model of dimension {}",
+                        mesh.cell_names[parent], mesh.dim
+                    )
+                })?;
+            let bt = mesh.cell_types[b];
+            let bx = crate::fem::reference::node_coords(bt);
+            let pos = pn
+                .iter()
+                .map(|n| mesh.cells[b].iter().position(|m| m == n).map(|k| bx[k]))
+                .collect::<Option<Vec<_>>>()
+                .ok_or("POST_MAIL_XFEM: internal error, boundary node not in its bulk cell")?;
+            Some((b, pos))
+        } else {
+            None
+        };
         let sub_type = if matches!(
             mesh.cell_types[parent],
-            CellType::Tria3 | CellType::Quad4 | CellType::Tetra4 | CellType::Penta6 | CellType::Hexa8
+            CellType::Seg2 | CellType::Tria3 | CellType::Quad4 | CellType::Tetra4 | CellType::Penta6 | CellType::Hexa8
         ) {
             crate::xfem::topose_linear::subcell_type(dim)
         } else {
@@ -233,7 +298,19 @@ pub fn visual_mesh(
                 };
                 out.coords.push(x);
                 out.node_names.push(format!("{prefix}{}", base36(inntot)));
-                origins.push(NodeOrigin::Xfem { parent, id: p.id, xi: p.xi, he: s.he.clone() });
+                origins.push(match &bulk {
+                    None => NodeOrigin::Xfem { parent, id: p.id, xi: p.xi, he: s.he.clone() },
+                    Some((b, pos)) => {
+                        let ff = crate::fem::reference::shape(mesh.cell_types[parent], &p.xi);
+                        let mut bulk_xi = [0.0; 3];
+                        for (f, x) in ff.iter().zip(pos) {
+                            for j in 0..3 {
+                                bulk_xi[j] += f * x[j];
+                            }
+                        }
+                        NodeOrigin::Boundary { parent, id: p.id, xi: p.xi, he: s.he.clone(), bulk: *b, bulk_xi }
+                    }
+                });
                 if lpint {
                     on_crack.push(n);
                 }

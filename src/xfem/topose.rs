@@ -997,6 +997,21 @@ impl Ctx<'_> {
     }
 }
 
+/// Cut a BOUNDARY cell of the model (a skin element of dimension lower
+/// than the mesh's, `mesh_dim`) by its interfaces, as TOPOSE does for the
+/// X-FEM boundary elements. Only the linear ones are supported (SEG2, and
+/// TRIA3 / QUAD4 faces of a 3D mesh, see
+/// [`super::topose_linear::topose_linear_boundary`]); the quadratic ones
+/// (SEG3, TRIA6, QUAD8: `xdecqu` / `xdecqv` with `ndime < ndim`) are refused.
+pub fn topose_boundary(
+    t: CellType,
+    mesh_dim: usize,
+    coords: &[[f64; 3]],
+    cracks: &[CrackInCell],
+) -> Result<Cutting, String> {
+    super::topose_linear::topose_linear_boundary(t, mesh_dim, coords, cracks)
+}
+
 /// Cut a parent cell by its interfaces, as TOPOSE (`te0514`) does. `coords`
 /// and `cracks[k].lsn` follow Code_Aster's local node order; the cracks are
 /// in the cell's order (model order).

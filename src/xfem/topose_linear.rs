@@ -28,7 +28,8 @@ use crate::xfem::topose::{CrackInCell, CutPoint, Cutting, SubCell};
 /// parent's characteristic length.
 const CRIDIST: f64 = 1e-9;
 
-/// Edges of the TRIA3 / TETRA4 simplices (`conare`), 1-based local vertices.
+/// Edges of the SEG2 / TRIA3 / TETRA4 simplices (`conare`), 1-based local vertices.
+const SEG2_EDGES: [[usize; 2]; 1] = [[1, 2]];
 const TRIA3_EDGES: [[usize; 2]; 3] = [[1, 2], [2, 3], [3, 1]];
 const TETRA4_EDGES: [[usize; 2]; 6] = [[1, 2], [1, 3], [1, 4], [2, 3], [2, 4], [3, 4]];
 
@@ -37,12 +38,13 @@ const QUAD4_SPLIT: [[u32; 3]; 2] = [[1, 2, 4], [2, 3, 4]];
 const HEXA8_SPLIT: [[u32; 4]; 6] = [[6, 3, 2, 4], [4, 5, 1, 2], [2, 5, 6, 4], [5, 4, 8, 6], [3, 6, 7, 8], [3, 8, 4, 6]];
 const PENTA6_SPLIT: [[u32; 4]; 3] = [[5, 4, 6, 1], [1, 2, 3, 6], [6, 2, 5, 1]];
 
-/// The simplex type of the sub-cells of a linear parent of dimension `dim`.
+/// The simplex type of the sub-cells of a linear parent of dimension `dim`
+/// (SEG2 for a boundary segment, TRIA3, TETRA4).
 pub fn subcell_type(dim: usize) -> CellType {
-    if dim == 2 {
-        CellType::Tria3
-    } else {
-        CellType::Tetra4
+    match dim {
+        1 => CellType::Seg2,
+        2 => CellType::Tria3,
+        _ => CellType::Tetra4,
     }
 }
 
@@ -85,6 +87,8 @@ fn loncar(t: CellType, x: &[[f64; 3]]) -> f64 {
         CellType::Hexa8 => dist(&x[0], &x[6]),
         CellType::Penta6 => (dist(&x[2], &x[0]) * dist(&x[2], &x[1]) * dist(&x[2], &x[5])).cbrt(),
         CellType::Tetra4 => (dist(&x[0], &x[1]) * dist(&x[0], &x[2]) * dist(&x[0], &x[3])).cbrt(),
+        // SEG2: |N1-N2|.
+        CellType::Seg2 => dist(&x[0], &x[1]),
         // QUAD4, TRIA3: ((N1-N2)·(N1-N3))^(1/2).
         _ => (dist(&x[0], &x[1]) * dist(&x[0], &x[2])).sqrt(),
     }
@@ -121,7 +125,10 @@ fn master_chain(cracks: &[CrackInCell], ifiss: usize) -> Result<Vec<(usize, f64)
 /// The parent cell and the intersection points found so far.
 struct Ctx<'a> {
     t: CellType,
+    /// Dimension of the parent cell (`ndime`).
     dim: usize,
+    /// Dimension of the mesh (`ndim`): larger than `dim` for a boundary cell.
+    ndim: usize,
     nno: usize,
     coords: &'a [[f64; 3]],
     /// lsn[crack][node].
@@ -133,10 +140,10 @@ struct Ctx<'a> {
 
 impl Ctx<'_> {
     fn edges(&self) -> &'static [[usize; 2]] {
-        if self.dim == 2 {
-            &TRIA3_EDGES
-        } else {
-            &TETRA4_EDGES
+        match self.dim {
+            1 => &SEG2_EDGES,
+            2 => &TRIA3_EDGES,
+            _ => &TETRA4_EDGES,
         }
     }
 
@@ -254,8 +261,14 @@ impl Ctx<'_> {
                 return Ok((Vec::new(), 0));
             }
         }
-        // Capacity of the point list: 2 on a triangle, 4 on a tetrahedron.
-        let ptmax = if self.dim == 2 { 2 } else { 4 };
+        // Capacity of the point list (`xdecou`): 4 on a tetrahedron, 3 on a
+        // boundary triangle of a 3D mesh, 2 on a triangle of a 2D mesh and
+        // on a segment.
+        let ptmax = match (self.ndim, self.dim) {
+            (_, 3) => 4,
+            (3, 2) => 3,
+            _ => 2,
+        };
         let tol = self.lonref * CRIDIST;
         let mut inter: Vec<Inter> = Vec::new();
         let mut npts = 0;
@@ -356,7 +369,32 @@ impl Ctx<'_> {
             )
         };
         let mut out: Vec<Vec<u32>> = Vec::new();
-        if self.dim == 2 {
+        if self.dim == 1 {
+            // A boundary segment (`xdecov`, ndime = 1).
+            match n {
+                0 => out.push(sub.to_vec()),
+                1 => {
+                    if npts == 1 {
+                        out.push(sub.to_vec());
+                    } else {
+                        let a1 = inter[0].edge;
+                        if a1 == 0 {
+                            return Err(bad("unexpected point order"));
+                        }
+                        out.push(vec![101, s(ed[a1 - 1][0])]);
+                        out.push(vec![101, s(ed[a1 - 1][1])]);
+                    }
+                }
+                2 => {
+                    // The interface contains the segment.
+                    if npts != n {
+                        return Err(bad("two points, not both vertices"));
+                    }
+                    out.push(sub.to_vec());
+                }
+                _ => return Err(bad("too many points")),
+            }
+        } else if self.dim == 2 {
             match n {
                 0 | 1 => {
                     if npts != n {
@@ -389,6 +427,13 @@ impl Ctx<'_> {
                             out.push(vec![101, s(b), s(c)]);
                         }
                     }
+                }
+                3 => {
+                    // The interface contains a boundary triangle of a 3D mesh.
+                    if npts != n {
+                        return Err(bad("three points, not all vertices"));
+                    }
+                    out.push(sub.to_vec());
                 }
                 _ => return Err(bad("too many points")),
             }
@@ -527,7 +572,66 @@ impl Ctx<'_> {
 /// follow Code_Aster's local node order; the cracks are in the cell's
 /// order (model order), `master` pointing into that list.
 pub fn topose_linear(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Result<Cutting, String> {
+    if t == CellType::Seg2 {
+        return Err("TOPOSE: a SEG2 parent is a boundary cell: use topose_linear_boundary".into());
+    }
+    cut_linear(t, t.dim(), coords, cracks)
+}
+
+/// Cut a linear BOUNDARY cell of the model (a skin element on a Heaviside
+/// cell: `te0514` with `ndime < ndim`) by its interfaces: a SEG2 in a 2D
+/// or 3D mesh, a TRIA3 or QUAD4 face in a 3D mesh (`mesh_dim`). The same
+/// algorithm as for the bulk cells (`xdivte`: SEG2 → (1,2), QUAD4 → (1,2,4)
+/// and (2,3,4); `xdecou` with at most 2 points on a segment and 3 on a
+/// face of a 3D mesh; `xdecov`: a segment cut at an inner point gives
+/// (P,A) and (P,B), a face cut by a segment the 2 or 3 triangles of the 2D
+/// case; the Heaviside value of each child from the sum of the level set
+/// over its vertices). The sub-cells are SEG2 / TRIA3 in Code_Aster's local
+/// order.
+pub fn topose_linear_boundary(
+    t: CellType,
+    mesh_dim: usize,
+    coords: &[[f64; 3]],
+    cracks: &[CrackInCell],
+) -> Result<Cutting, String> {
+    match (t, mesh_dim) {
+        (CellType::Seg2, 2 | 3) | (CellType::Tria3 | CellType::Quad4, 3) => cut_linear(t, mesh_dim, coords, cracks),
+        _ => Err(format!(
+            "TOPOSE: boundary cell type {} in a {mesh_dim}D mesh is not supported (SEG2, and TRIA3 / QUAD4 faces of a 3D mesh)",
+            t.name()
+        )),
+    }
+}
+
+/// Orientation of the sub-cells of a boundary cell of dimension
+/// `mesh_dim − 1` (`xoripe`, after TOPOSE): `outward` is the boundary
+/// cell's centroid minus the centroid of its support cell (the cell of the
+/// mesh's dimension holding it); a sub-cell whose normal — (y_b − y_a,
+/// −(x_b − x_a)) of its first two vertices in 2D, (b − a) × (c − a) in 3D —
+/// points against it has its vertices 1 and 2 (2D) or 2 and 3 (3D)
+/// swapped. Boundary cells of lower dimension (a SEG2 in 3D) are left as
+/// they are, as `xoripe` does. Returns the number of sub-cells reoriented.
+pub fn orient_boundary(cut: &mut Cutting, mesh_dim: usize, outward: &[f64; 3]) -> usize {
+    let mut n = 0;
+    for sc in cut.subcells.iter_mut() {
+        if sc.nodes.len() != mesh_dim {
+            continue;
+        }
+        let p = |k: usize| cut.points[sc.nodes[k]].x;
+        let ab = sub3(&p(1), &p(0));
+        let normal = if mesh_dim == 2 { [ab[1], -ab[0], 0.0] } else { cross(&ab, &sub3(&p(2), &p(0))) };
+        let d: f64 = (0..mesh_dim).map(|j| normal[j] * outward[j]).sum();
+        if d < 0.0 {
+            sc.nodes.swap(mesh_dim - 2, mesh_dim - 1);
+            n += 1;
+        }
+    }
+    n
+}
+
+fn cut_linear(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Result<Cutting, String> {
     let (dim, nno, split): (usize, usize, Vec<Vec<u32>>) = match t {
+        CellType::Seg2 => (1, 2, vec![vec![1, 2]]),
         CellType::Tria3 => (2, 3, vec![vec![1, 2, 3]]),
         CellType::Quad4 => (2, 4, QUAD4_SPLIT.iter().map(|s| s.to_vec()).collect()),
         CellType::Tetra4 => (3, 4, vec![vec![1, 2, 3, 4]]),
@@ -557,6 +661,7 @@ pub fn topose_linear(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -
     let mut ctx = Ctx {
         t,
         dim,
+        ndim,
         nno,
         coords,
         lsn: cracks.iter().map(|c| c.lsn.as_slice()).collect(),
