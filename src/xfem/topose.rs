@@ -103,22 +103,22 @@ const HEXA20_SPLIT: [[u32; 10]; 6] = [
 
 /// A point: reference coordinates in the parent and real coordinates.
 #[derive(Debug, Clone, Copy)]
-struct Pt {
-    xi: [f64; 3],
-    x: [f64; 3],
+pub(super) struct Pt {
+    pub(super) xi: [f64; 3],
+    pub(super) x: [f64; 3],
 }
 
 /// An intersection point of the current sub-simplex (`pinter`/`ainter`).
 #[derive(Debug, Clone, Copy)]
-struct Inter {
-    p: Pt,
+pub(super) struct Inter {
+    pub(super) p: Pt,
     /// 1-based local edge, 0 when the point is a vertex of the sub-simplex.
-    edge: usize,
+    pub(super) edge: usize,
     /// Id of the vertex when `edge == 0`.
-    node: u32,
+    pub(super) node: u32,
 }
 
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+pub(super) fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
 }
 
@@ -126,15 +126,15 @@ fn mid(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
     [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0, (a[2] + b[2]) / 2.0]
 }
 
-fn sub3(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+pub(super) fn sub3(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+pub(super) fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+pub(super) fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
     [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
@@ -221,17 +221,21 @@ impl Ctx<'_> {
     }
 }
 
-/// `loncar` for the parent and sub-simplex types used here.
-fn loncar(t: CellType, x: &[[f64; 3]]) -> f64 {
+/// Characteristic length of a cell (`loncar`): the tolerances of the cutting are relative to it.
+pub(super) fn loncar(t: CellType, x: &[[f64; 3]]) -> f64 {
     match t {
-        CellType::Hexa20 => dist(&x[0], &x[6]),
-        CellType::Quad8 | CellType::Tria6 => (dist(&x[0], &x[1]) * dist(&x[0], &x[2])).sqrt(),
+        CellType::Hexa8 | CellType::Hexa20 => dist(&x[0], &x[6]),
+        CellType::Penta6 => (dist(&x[2], &x[0]) * dist(&x[2], &x[1]) * dist(&x[2], &x[5])).cbrt(),
+        CellType::Seg2 => dist(&x[0], &x[1]),
+        CellType::Tria3 | CellType::Quad4 | CellType::Tria6 | CellType::Quad8 => {
+            (dist(&x[0], &x[1]) * dist(&x[0], &x[2])).sqrt()
+        }
         _ => (dist(&x[0], &x[1]) * dist(&x[0], &x[2]) * dist(&x[0], &x[3])).cbrt(),
     }
 }
 
 /// The masters a crack branches on, transitively (`fisc`): (crack, coef).
-fn master_chain(cracks: &[CrackInCell], ifiss: usize) -> Result<Vec<(usize, f64)>, String> {
+pub(super) fn master_chain(cracks: &[CrackInCell], ifiss: usize) -> Result<Vec<(usize, f64)>, String> {
     let mut chain = Vec::new();
     let mut k = ifiss;
     while let Some((m, c)) = cracks[k].master {

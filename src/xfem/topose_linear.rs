@@ -22,7 +22,9 @@
 
 use crate::fem::reference::{map_to_real, node_coords, shape, shape_and_deriv};
 use crate::mesh::CellType;
-use crate::xfem::topose::{CrackInCell, CutPoint, Cutting, SubCell};
+use crate::xfem::topose::{
+    cross, dist, dot, loncar, master_chain, sub3, CrackInCell, CutPoint, Cutting, Inter, Pt, SubCell,
+};
 
 /// Coincidence tolerance of the point lists (`cridist`), relative to the
 /// parent's characteristic length.
@@ -48,52 +50,6 @@ pub fn subcell_type(dim: usize) -> CellType {
     }
 }
 
-/// A point: reference coordinates in the parent and real coordinates.
-#[derive(Debug, Clone, Copy)]
-struct Pt {
-    xi: [f64; 3],
-    x: [f64; 3],
-}
-
-/// An intersection point of the current simplex (`pinter` / `ainter`).
-#[derive(Debug, Clone, Copy)]
-struct Inter {
-    p: Pt,
-    /// 1-based local edge; 0 when the point is a vertex of the simplex.
-    edge: usize,
-    /// Id of that vertex when `edge == 0`.
-    node: u32,
-}
-
-fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
-}
-
-fn sub3(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-/// Characteristic length of a linear parent (`loncar`).
-fn loncar(t: CellType, x: &[[f64; 3]]) -> f64 {
-    match t {
-        CellType::Hexa8 => dist(&x[0], &x[6]),
-        CellType::Penta6 => (dist(&x[2], &x[0]) * dist(&x[2], &x[1]) * dist(&x[2], &x[5])).cbrt(),
-        CellType::Tetra4 => (dist(&x[0], &x[1]) * dist(&x[0], &x[2]) * dist(&x[0], &x[3])).cbrt(),
-        // SEG2: |N1-N2|.
-        CellType::Seg2 => dist(&x[0], &x[1]),
-        // QUAD4, TRIA3: ((N1-N2)·(N1-N3))^(1/2).
-        _ => (dist(&x[0], &x[1]) * dist(&x[0], &x[2])).sqrt(),
-    }
-}
-
 /// Is a reference point inside the parent's reference domain (`xveri0`,
 /// tolerance 1e-12)?
 fn inside(t: CellType, xi: &[f64; 3]) -> bool {
@@ -105,21 +61,6 @@ fn inside(t: CellType, xi: &[f64; 3]) -> bool {
         CellType::Penta6 => xi[0].abs() <= one && xi[1] <= one && xi[2] <= one && 1.0 - xi[1] - xi[2] >= zero,
         _ => xi.iter().take(t.dim()).all(|v| v.abs() <= one),
     }
-}
-
-/// The masters a crack branches on, transitively (`fisc` in `te0514`):
-/// (crack index in the cell, coef).
-fn master_chain(cracks: &[CrackInCell], ifiss: usize) -> Result<Vec<(usize, f64)>, String> {
-    let mut chain = Vec::new();
-    let mut k = ifiss;
-    while let Some((m, c)) = cracks[k].master {
-        if m >= cracks.len() || chain.len() > cracks.len() {
-            return Err(format!("TOPOSE: invalid junction table for crack {} of the cell", ifiss + 1));
-        }
-        chain.push((m, c));
-        k = m;
-    }
-    Ok(chain)
 }
 
 /// The parent cell and the intersection points found so far.
