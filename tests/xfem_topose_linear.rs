@@ -451,3 +451,88 @@ fn ssnv173f_level_set_with_boundary_parents() {
     let nm = named.iter().filter(|n| n.0.starts_with("NM")).count();
     assert_eq!(2 * nm, named.len());
 }
+
+/// The regions of ssnv513a's "F" (three interfaces, a junction chain
+/// FISS3 → FISS2 → FISS1) are the same in every cell, also in cells that
+/// cut a branch as a full interface because its master is not among their
+/// cracks: exactly one region code per piece of the block, matching the
+/// piece the sub-cell's centroid lies in.
+#[test]
+fn ssnv511a_regions_are_consistent_across_cells() {
+    let Some(m) = mesh("ssnv511a.mmed") else { return };
+    let mc = Concept::new(ConceptKind::Maillage, ConceptData::Mesh(m.clone()));
+    let ls = |f: &dyn Fn(&[f64; 3]) -> f64| -> Vec<f64> { m.coords.iter().map(f).collect() };
+    let l1 = ls(&|x| x[1] - 1.0 - 0.5 * x[0]);
+    let l2 = ls(&|x| x[0]);
+    let l3 = ls(&|x| x[1]);
+    let mk = |name: &str, l: Vec<f64>, masters: &[ConceptRef], point: Option<&[f64]>| {
+        let k = build_interface(mc.clone(), m.clone(), l, None, masters, point).unwrap();
+        let c = Concept::new(ConceptKind::FissXfem, ConceptData::Crack(k));
+        c.set_name(name);
+        c
+    };
+    let c1 = mk("FISS1", l1.clone(), &[], None);
+    let c2 = mk("FISS2", l2.clone(), std::slice::from_ref(&c1), Some(&[0.0, -5.0]));
+    let c3 = mk("FISS3", l3.clone(), std::slice::from_ref(&c2), Some(&[5.0, 0.0]));
+    let cracks = vec![c1.clone(), c2.clone(), c3.clone()];
+    let coef = |c: &ConceptRef| crack_of(c).unwrap().master().unwrap().1;
+    let masters = vec![None, Some((0, coef(&c2))), Some((1, coef(&c3)))];
+    let lsn = vec![l1, l2, l3];
+    let model_cells: Vec<usize> = (0..m.ncells()).filter(|&c| m.cell_types[c].dim() == 2).collect();
+    let mut cuts = BTreeMap::new();
+    for &c in &model_cells {
+        let seen: Vec<usize> =
+            (0..3).filter(|&g| crack_of(&cracks[g]).unwrap().heaviside_cells.binary_search(&c).is_ok()).collect();
+        if seen.is_empty() {
+            continue;
+        }
+        let nodes = &m.cells[c];
+        let cic: Vec<CrackInCell> = seen
+            .iter()
+            .map(|&g| CrackInCell {
+                lsn: nodes.iter().map(|&n| lsn[g][n]).collect(),
+                master: masters[g].and_then(|(mm, k)| seen.iter().position(|&s| s == mm).map(|p| (p, k))),
+            })
+            .collect();
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| m.coords[n]).collect();
+        cuts.insert(c, (seen, topose_linear(m.cell_types[c], &coords, &cic).unwrap()));
+    }
+    let enriched: Vec<Vec<bool>> =
+        cracks.iter().map(|c| (0..m.nnodes()).map(|n| crack_of(c).unwrap().enriched(n)).collect()).collect();
+    let names = vec!["FISS1".into(), "FISS2".into(), "FISS3".into()];
+    let xm = aster::xfem::model::XfemModel::new(
+        &m,
+        &model_cells,
+        cracks,
+        names,
+        lsn,
+        masters,
+        enriched,
+        "SANS".into(),
+        cuts,
+        "AUTO",
+    )
+    .unwrap();
+    let mut codes: BTreeMap<&str, std::collections::BTreeSet<i32>> = BTreeMap::new();
+    for xc in xm.cells.values() {
+        for (s, sc) in xc.cutting.subcells.iter().enumerate() {
+            let centroid =
+                |k: usize| sc.nodes.iter().map(|&p| xc.cutting.points[p].x[k]).sum::<f64>() / sc.nodes.len() as f64;
+            let (x, y) = (centroid(0), centroid(1));
+            let piece = if y > 0.5 * x + 1.0 {
+                "A"
+            } else if x < 0.0 {
+                "B"
+            } else if y > 0.0 {
+                "C"
+            } else {
+                "D"
+            };
+            codes.entry(piece).or_default().insert(xc.regions[s]);
+        }
+    }
+    // (+1, 0, 0) → 58, (−1, −1, 0) → 22, (−1, +1, +1) → 31, (−1, +1, −1) → 29.
+    let expect: BTreeMap<&str, std::collections::BTreeSet<i32>> =
+        [("A", 58), ("B", 22), ("C", 31), ("D", 29)].into_iter().map(|(p, c)| (p, [c].into())).collect();
+    assert_eq!(codes, expect);
+}
