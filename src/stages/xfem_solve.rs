@@ -678,6 +678,7 @@ fn constraints(
     let mut cons = Constraints::new();
     let mut hydraulic: BTreeMap<(usize, String), f64> = BTreeMap::new();
     let mut blocked_dir = vec![false; ndim];
+    let mut jump_cache: BTreeMap<(usize, String), bool> = BTreeMap::new();
     for (lc, mult) in loads(a, t)? {
         let data = lc.data();
         let ConceptData::Load(load) = &*data else {
@@ -732,10 +733,35 @@ fn constraints(
                             _ => None,
                         })
                         .collect();
-                    for (j, h) in trace_sets(mesh, xm, n, &same, f, t).map_err(|e| {
+                    let key = (Rc::as_ptr(f) as usize, c.to_string());
+                    let jumps = match jump_cache.get(&key) {
+                        Some(&j) => j,
+                        None => {
+                            let j = function_jumps(mesh, xm, &same, f, t)
+                                .map_err(|e| a.err("EXCIT", format!("load {}: {c}: {e}", lc.label())))?;
+                            jump_cache.insert(key, j);
+                            j
+                        }
+                    };
+                    let (values, points) = trace_sets(mesh, xm, n, &same, f, t, jumps).map_err(|e| {
                         a.err("EXCIT", format!("load {}: {c} at node {}: {e}", lc.label(), mesh.node_names[n]))
-                    })? {
+                    })?;
+                    for (j, h) in values {
                         cons.impose(xd.sets[n][j] + d, mult * h);
+                    }
+                    // xddlimf's point relation: the whole field at a point
+                    // of the set's region equals the function there.
+                    for p in points {
+                        let nodes = &mesh.cells[p.cell];
+                        let mut terms = Vec::new();
+                        for (k, &i) in nodes.iter().enumerate() {
+                            let std_i = xd.std[i].expect("node of a model cell");
+                            terms.push((std_i + d, p.ff[k]));
+                            if let Some(jj) = xm.node_sets[i].iter().position(|&r| r == p.region) {
+                                terms.push((xd.sets[i][jj] + d, 2.0 * p.ff[k]));
+                            }
+                        }
+                        cons.relation(terms, mult * p.value);
                     }
                 }
             } else if let Some((j, d)) = heaviside_component(c).filter(|&(_, d)| d < ndim) {
@@ -930,10 +956,12 @@ fn converged_check(iters: usize, rel: f64, abs: f64, resi_rela: Option<f64>, res
 /// node `k` of the set where an interface crosses, the set of `n` for the
 /// region on `k`'s side is fixed so that the trace there equals the function
 /// just beyond the crossing: N_n(a_n + 2h) + N_k a_k = f(x_c⁺) on a linear
-/// edge, with a_n = f(x_n), a_k = f(x_k). Sets not reached this way are zero
-/// (the function is continuous around them). A quadratic edge is handled when
-/// the function is continuous across the crossing (then h = 0); a
-/// discontinuous one stops the run.
+/// edge, with a_n = f(x_n), a_k = f(x_k). A set not reached this way gets
+/// h = 0 when the function is continuous across the crossings of `n`, and
+/// otherwise Code_Aster's point relation ([`point_relation`]) when a node of
+/// the set's region belongs to the condition around `n` (nothing if none). A
+/// quadratic edge is handled when the function is continuous across the
+/// crossing (then h = 0); a discontinuous one stops the run.
 fn trace_sets(
     mesh: &crate::mesh::Mesh,
     xm: &XfemModel,
@@ -941,12 +969,12 @@ fn trace_sets(
     same: &BTreeSet<usize>,
     f: &ConceptRef,
     t: f64,
-) -> Result<Vec<(usize, f64)>> {
+    jump: bool,
+) -> Result<TraceConditions> {
     const EPS: f64 = 2e-6;
     let eval = |x: &[f64; 3]| super::statics::eval_at(f, x, t);
     let mut out: Vec<(usize, f64)> = (0..xm.node_sets[n].len()).map(|j| (j, 0.0)).collect();
     let mut done = vec![false; out.len()];
-    let mut jump = false;
     for (c, nodes) in mesh.cells.iter().enumerate() {
         let ct = mesh.cell_types[c];
         if ct.dim() != mesh.dim || !nodes.contains(&n) {
@@ -988,7 +1016,6 @@ fn trace_sets(
             let quadratic = ct.nnodes() > ct.nvertices();
             let fb = eval(&before)?;
             let discontinuous = (fc - fb).abs() > 1e-9 * fc.abs().max(fb.abs()).max(1e-300);
-            jump |= discontinuous;
             let h = if quadratic {
                 if discontinuous {
                     return Err(Error::runtime(
@@ -1013,14 +1040,117 @@ fn trace_sets(
     // for a function continuous across the interfaces. For a discontinuous
     // one Code_Aster ties the whole field at a point of the set's region
     // (xddlimf's second case), which we do not do yet.
-    if jump {
-        if let Some(j) = done.iter().position(|d| !d) {
-            return Err(Error::runtime(format!(
-                "the function jumps across an interface and the node's Heaviside set {} is not reached along a cut \
-                 edge of the condition: xddlimf's point relation is not supported yet",
-                j + 1
-            )));
+    // A set no cut edge reaches: Code_Aster ties the whole field at a point
+    // of the set's region to the function (xddlimf's second case), or, when
+    // no node of the condition lies in that region around the node, imposes
+    // nothing on it.
+    // For a function continuous across the interfaces the trace matches on
+    // every side with h = 0, which that relation then also gives.
+    let mut kept = Vec::new();
+    let mut points = Vec::new();
+    for (j, h) in out {
+        if done[j] || !jump {
+            kept.push((j, h));
+        } else if let Some(p) = point_relation(mesh, xm, n, j, same, f, t)? {
+            points.push(p);
         }
     }
-    Ok(out)
+    Ok((kept, points))
+}
+
+/// Does `f` jump across an interface somewhere on the condition's node set
+/// (along a mesh edge between two of its nodes where a level set changes sign)?
+fn function_jumps(
+    mesh: &crate::mesh::Mesh,
+    xm: &XfemModel,
+    same: &BTreeSet<usize>,
+    f: &ConceptRef,
+    t: f64,
+) -> Result<bool> {
+    const EPS: f64 = 2e-6;
+    for (c, nodes) in mesh.cells.iter().enumerate() {
+        let ct = mesh.cell_types[c];
+        if ct.dim() != mesh.dim {
+            continue;
+        }
+        for e in crate::xfem::levelset::edges(ct) {
+            let (n, k) = (nodes[e[0]], nodes[e[1]]);
+            if !same.contains(&n) || !same.contains(&k) {
+                continue;
+            }
+            for g in 0..xm.lsn.len() {
+                if xm.lsn[g][n] * xm.lsn[g][k] >= 0.0 {
+                    continue;
+                }
+                let alpha = xm.lsn[g][n] / (xm.lsn[g][n] - xm.lsn[g][k]);
+                let (xn, xk) = (mesh.coords[n], mesh.coords[k]);
+                let at = |s: f64| -> [f64; 3] { [0, 1, 2].map(|i| xn[i] + s * (xk[i] - xn[i])) };
+                let fa = super::statics::eval_at(f, &at(alpha * (1.0 - EPS)), t)?;
+                let fb = super::statics::eval_at(f, &at(alpha + EPS * (1.0 - alpha)), t)?;
+                if (fa - fb).abs() > 1e-9 * fa.abs().max(fb.abs()).max(1e-300) {
+                    return Ok(true);
+                }
+            }
+        }
+    }
+    Ok(false)
+}
+
+/// The conditions on a node's Heaviside sets: (set, value) pairs and point relations.
+type TraceConditions = (Vec<(usize, f64)>, Vec<PointRelation>);
+
+/// `xddlimf`'s relation for a set no cut edge reaches: the whole field of
+/// the set's region at a point of a cell holding the node, equal to the
+/// function there.
+struct PointRelation {
+    cell: usize,
+    /// Shape functions of the cell at the point.
+    ff: Vec<f64>,
+    region: i32,
+    value: f64,
+}
+
+/// The point of [`PointRelation`]: in a cell holding node `n` and a node `k`
+/// of the condition whose own region is the set's, on the segment n–k at
+/// Code_Aster's level-set-weighted position beyond the interface
+/// ((|φ_n| + |φ_k|/2) x_k + |φ_k|/2 x_n)/(|φ_n| + |φ_k|), `k` the farthest
+/// from the interface.
+fn point_relation(
+    mesh: &crate::mesh::Mesh,
+    xm: &XfemModel,
+    n: usize,
+    j: usize,
+    same: &BTreeSet<usize>,
+    f: &ConceptRef,
+    t: f64,
+) -> Result<Option<PointRelation>> {
+    let region = xm.node_sets[n][j];
+    let mut best: Option<(f64, usize, usize, usize)> = None; // (|φ_k|, cell, k, crack)
+    for (c, nodes) in mesh.cells.iter().enumerate() {
+        if mesh.cell_types[c].dim() != mesh.dim || !nodes.contains(&n) {
+            continue;
+        }
+        for &k in nodes {
+            if k == n || !same.contains(&k) || xm.node_region[k] != region {
+                continue;
+            }
+            let Some(g) = (0..xm.lsn.len()).find(|&g| xm.lsn[g][n] * xm.lsn[g][k] < 0.0) else { continue };
+            let lk = xm.lsn[g][k].abs();
+            if best.is_none_or(|b| lk > b.0) {
+                best = Some((lk, c, k, g));
+            }
+        }
+    }
+    let Some((lk, c, k, g)) = best else { return Ok(None) };
+    let ln = xm.lsn[g][n].abs();
+    let (xn, xk) = (mesh.coords[n], mesh.coords[k]);
+    let xp: [f64; 3] = [0, 1, 2].map(|i| ((ln + lk / 2.0) * xk[i] + lk / 2.0 * xn[i]) / (ln + lk));
+    let ct = mesh.cell_types[c];
+    let coords: Vec<[f64; 3]> = mesh.cells[c].iter().map(|&m| mesh.coords[m]).collect();
+    let xi = crate::fem::reference::inverse_map(ct, &coords, &xp, &Default::default())
+        .map_err(|e| Error::runtime(format!("locating xddlimf's point: {e}")))?
+        .xi;
+    let ff = crate::fem::reference::shape(ct, &xi);
+    let value = super::statics::eval_at(f, &xp, t)?;
+    Ok(Some(PointRelation { cell: c, ff, region, value }))
 }
