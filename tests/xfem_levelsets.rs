@@ -7,22 +7,14 @@
 //! sub-domain codes are checked through the library on the same meshes.
 //! Every test prints a message and passes when `../shared` is absent.
 
-use aster::concepts::{Concept, ConceptData, ConceptKind, ConceptRef};
 use aster::mesh::Mesh;
-use aster::xfem::{build_interface, crack_of, node_code};
-use std::path::{Path, PathBuf};
+use aster::xfem::{crack_of, node_code};
+use std::path::Path;
 use std::process::Command;
 use std::rc::Rc;
 
-fn astest(file: &str) -> Option<PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/astest").join(file);
-    if p.exists() {
-        Some(p)
-    } else {
-        println!("SKIP: {} is absent", p.display());
-        None
-    }
-}
+mod common;
+use common::*;
 
 /// The statement `NAME = ...(...)` of a command file, up to its closing
 /// parenthesis (quotes respected), with a trailing `;` dropped.
@@ -145,34 +137,10 @@ fn wtnv149b_enriched_node_counts() {
 
 // ------------------------------------------------------------------ library level
 
-fn mesh(file: &str) -> Option<Rc<Mesh>> {
-    let p = astest(file)?;
-    Some(Rc::new(aster::med::read_mesh(&p, None).unwrap()))
-}
-
 fn node_at(mesh: &Mesh, x: &[f64]) -> usize {
     (0..mesh.nnodes())
         .find(|&n| x.iter().enumerate().all(|(k, v)| (mesh.coords[n][k] - v).abs() < 1e-9))
         .unwrap_or_else(|| panic!("no node at {x:?}"))
-}
-
-/// FISS1 then FISS2 with its junction, from level-set closures.
-fn two_cracks(
-    mesh: &Rc<Mesh>,
-    f1: impl Fn(&[f64; 3]) -> f64,
-    f2: impl Fn(&[f64; 3]) -> f64,
-    point: &[f64],
-) -> (ConceptRef, ConceptRef) {
-    let mc = Concept::new(ConceptKind::Maillage, ConceptData::Mesh(mesh.clone()));
-    let l1 = mesh.coords.iter().map(&f1).collect();
-    let k1 = build_interface(mc.clone(), mesh.clone(), l1, None, &[], None).unwrap();
-    let c1 = Concept::new(ConceptKind::FissXfem, ConceptData::Crack(k1));
-    c1.set_name("FISS1");
-    let l2 = mesh.coords.iter().map(&f2).collect();
-    let k2 = build_interface(mc, mesh.clone(), l2, None, std::slice::from_ref(&c1), Some(point)).unwrap();
-    let c2 = Concept::new(ConceptKind::FissXfem, ConceptData::Crack(k2));
-    c2.set_name("FISS2");
-    (c1, c2)
 }
 
 #[test]

@@ -4,42 +4,15 @@
 //! FISS1). Expected counts and names: `post-mail-xfem-naming.md` §3.
 //! Every test prints a message and passes when `../shared` is absent.
 
-use aster::concepts::{Concept, ConceptData, ConceptKind, ConceptRef};
 use aster::mesh::{CellType, Mesh};
+use aster::xfem::crack_of;
 use aster::xfem::postmail::{visual_mesh, NodeOrigin, Prefixes, VisualMesh};
 use aster::xfem::topose::{topose, CrackInCell, Cutting};
-use aster::xfem::{build_interface, crack_of};
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::Path;
 use std::rc::Rc;
 
-fn mesh(file: &str) -> Option<Rc<Mesh>> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/astest").join(file);
-    if !p.exists() {
-        println!("SKIP: {} is absent", p.display());
-        return None;
-    }
-    Some(Rc::new(aster::med::read_mesh(&p, None).unwrap()))
-}
-
-/// FISS1 then FISS2 with its junction on FISS1.
-fn two_cracks(
-    mesh: &Rc<Mesh>,
-    f1: impl Fn(&[f64; 3]) -> f64,
-    f2: impl Fn(&[f64; 3]) -> f64,
-    point: &[f64],
-) -> (ConceptRef, ConceptRef) {
-    let mc = Concept::new(ConceptKind::Maillage, ConceptData::Mesh(mesh.clone()));
-    let l1 = mesh.coords.iter().map(&f1).collect();
-    let k1 = build_interface(mc.clone(), mesh.clone(), l1, None, &[], None).unwrap();
-    let c1 = Concept::new(ConceptKind::FissXfem, ConceptData::Crack(k1));
-    c1.set_name("FISS1");
-    let l2 = mesh.coords.iter().map(&f2).collect();
-    let k2 = build_interface(mc, mesh.clone(), l2, None, std::slice::from_ref(&c1), Some(point)).unwrap();
-    let c2 = Concept::new(ConceptKind::FissXfem, ConceptData::Crack(k2));
-    c2.set_name("FISS2");
-    (c1, c2)
-}
+mod common;
+use common::*;
 
 struct Case {
     mesh: Rc<Mesh>,

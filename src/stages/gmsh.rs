@@ -25,7 +25,7 @@ use super::model::{model_of, select_cells};
 use super::results::result_of;
 use super::Ctx;
 use crate::catalog::args::Args;
-use crate::concepts::result::{Field, ResultData, Step};
+use crate::concepts::result::Field;
 use crate::concepts::ConceptData;
 use crate::diag::Result;
 use crate::mesh::{CellType, Mesh};
@@ -205,39 +205,6 @@ fn view_body(out: &mut String, mesh: &Mesh, els: &Elements, fields: &[(&[f64], u
     out.push_str("$EndView\n");
 }
 
-/// The steps an occurrence selects: all (TOUT_ORDRE or nothing), NUME_ORDRE
-/// or INST (with CRITERE / PRECISION).
-fn selected_steps<'r>(r: &'r ResultData, occ: &Args, name: &str) -> Result<Vec<&'r Step>> {
-    if occ.has("NUME_ORDRE") {
-        let mut out = Vec::new();
-        for n in occ.ints("NUME_ORDRE") {
-            out.push(r.by_order(n).ok_or_else(|| occ.err("NUME_ORDRE", format!("result {name} has no order {n}")))?);
-        }
-        return Ok(out);
-    }
-    if occ.has("INST") {
-        let crit = occ.text("CRITERE").unwrap_or("RELATIF");
-        let prec = occ.real("PRECISION").unwrap_or(1.0e-6);
-        let mut out = Vec::new();
-        for t in occ.reals("INST") {
-            let tol = if crit == "ABSOLU" { prec } else { prec * t.abs() };
-            let found: Vec<&Step> = r.steps.iter().filter(|s| (s.inst - t).abs() <= tol).collect();
-            match found.as_slice() {
-                [one] => out.push(*one),
-                [] => {
-                    return Err(occ.err(
-                        "INST",
-                        format!("result {name} has no step at time {t} (CRITERE='{crit}', PRECISION={prec})"),
-                    ))
-                }
-                _ => return Err(occ.err("INST", format!("time {t} matches several steps of result {name}"))),
-            }
-        }
-        return Ok(out);
-    }
-    Ok(r.steps.iter().collect())
-}
-
 /// One RESU occurrence: the views of the node fields of a result.
 fn print_occurrence(occ: &Args, first: bool, version: u8, out: &mut String, alarms: &mut String) -> Result<()> {
     occ.refuse(&[
@@ -265,19 +232,11 @@ fn print_occurrence(occ: &Args, first: bool, version: u8, out: &mut String, alar
     let model = model_of(&r.model)?;
     let mesh = model.current_mesh();
     let mesh_name = model.mesh_concept.label();
-    let steps = selected_steps(&r, occ, &full_name)?;
+    let steps = super::mesh::selected_steps(&r, occ, &full_name)?;
     if steps.is_empty() {
         return Err(occ.err("RESULTAT", format!("result {full_name} holds no step")));
     }
-    let explicit = occ.has("NOM_CHAM");
-    let names: Vec<String> = if explicit {
-        occ.texts("NOM_CHAM")
-    } else if occ.text("TOUT_CHAM") == Some("NON") {
-        Vec::new()
-    } else {
-        let all: std::collections::BTreeSet<&String> = steps.iter().flat_map(|s| s.fields.keys()).collect();
-        all.into_iter().cloned().collect()
-    };
+    let (explicit, names) = super::mesh::selected_fields(&steps, occ);
     // Fields absent at the first order are skipped (irgmsh); nothing at all
     // is written when no field exists (PREPOST2_59).
     let names: Vec<String> = names.into_iter().filter(|n| steps[0].fields.contains_key(n)).collect();

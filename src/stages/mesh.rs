@@ -720,7 +720,7 @@ fn list_of(occ: &Args, kw: &str) -> Result<Option<Vec<f64>>> {
 
 /// The steps an occurrence selects (TOUT_ORDRE, NUME_ORDRE, LIST_ORDRE,
 /// INST, LIST_INST; all steps by default), in the result's order.
-fn selected_steps<'r>(r: &'r ResultData, occ: &Args, name: &str) -> Result<Vec<&'r Step>> {
+pub(super) fn selected_steps<'r>(r: &'r ResultData, occ: &Args, name: &str) -> Result<Vec<&'r Step>> {
     for kw in ["NUME_MODE", "NOEUD_CMP", "NOM_CAS", "ANGLE", "FREQ", "LIST_FREQ"] {
         if occ.has(kw) {
             return Err(occ.err(kw, format!("{kw} is not supported yet (only NUME_ORDRE and INST select steps)")));
@@ -774,6 +774,19 @@ fn selected_steps<'r>(r: &'r ResultData, occ: &Args, name: &str) -> Result<Vec<&
         return Ok(r.steps.iter().collect());
     }
     Ok(r.steps.iter().filter(|s| wanted.contains(&s.nume_ordre)).collect())
+}
+
+/// The fields an occurrence prints: NOM_CHAM (then `true`), none under
+/// TOUT_CHAM='NON', else every field of the selected steps, sorted.
+pub(super) fn selected_fields(steps: &[&Step], occ: &Args) -> (bool, Vec<String>) {
+    if occ.has("NOM_CHAM") {
+        return (true, occ.texts("NOM_CHAM"));
+    }
+    if occ.text("TOUT_CHAM") == Some("NON") {
+        return (false, Vec::new());
+    }
+    let all: std::collections::BTreeSet<&String> = steps.iter().flat_map(|s| s.fields.keys()).collect();
+    (false, all.into_iter().cloned().collect())
 }
 
 fn field_kind(f: &Field) -> &'static str {
@@ -830,15 +843,7 @@ fn plan_result(out: &mut MedOut, occ: &Args) -> Result<()> {
     let steps = selected_steps(&r, occ, &rname)?;
 
     // Which fields, under which MED names.
-    let explicit = occ.has("NOM_CHAM");
-    let symbols: Vec<String> = if explicit {
-        occ.texts("NOM_CHAM")
-    } else if occ.text("TOUT_CHAM") == Some("NON") {
-        Vec::new()
-    } else {
-        let all: std::collections::BTreeSet<&String> = steps.iter().flat_map(|s| s.fields.keys()).collect();
-        all.into_iter().cloned().collect()
-    };
+    let (explicit, symbols) = selected_fields(&steps, occ);
     let med_names: Vec<String> = if occ.has("NOM_CHAM_MED") {
         let given = occ.texts("NOM_CHAM_MED");
         if !explicit || given.len() != symbols.len() {

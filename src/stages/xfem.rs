@@ -198,21 +198,26 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
             }
         }
     }
-    let mut cuttings = BTreeMap::new();
-    for &c in &model_cells {
-        let seen: Vec<usize> = (0..cracks.len()).filter(|&g| hcells[g].binary_search(&c).is_ok()).collect();
-        if seen.is_empty() {
-            continue;
-        }
+    // The cracks a cell sees and what TOPOSE needs of them (level sets at
+    // its nodes, the junctions among them), with the cell's coordinates.
+    let cell_view = |c: usize, seen: &[usize]| -> (Vec<CrackInCell>, Vec<[f64; 3]>) {
         let nodes = &mesh.cells[c];
-        let cic: Vec<CrackInCell> = seen
+        let cic = seen
             .iter()
             .map(|&g| CrackInCell {
                 lsn: nodes.iter().map(|&n| lsn[g][n]).collect(),
                 master: masters[g].and_then(|(m, coef)| seen.iter().position(|&s| s == m).map(|p| (p, coef))),
             })
             .collect();
-        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+        (cic, nodes.iter().map(|&n| mesh.coords[n]).collect())
+    };
+    let mut cuttings = BTreeMap::new();
+    for &c in &model_cells {
+        let seen: Vec<usize> = (0..cracks.len()).filter(|&g| hcells[g].binary_search(&c).is_ok()).collect();
+        if seen.is_empty() {
+            continue;
+        }
+        let (cic, coords) = cell_view(c, &seen);
         let cut = topose(mesh.cell_types[c], &coords, &cic)
             .map_err(|e| a.err("FISSURE", format!("cutting cell {}: {e}", mesh.cell_names[c])))?;
         cuttings.insert(c, (seen, cut));
@@ -239,15 +244,8 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
         {
             continue;
         }
+        let (cic, coords) = cell_view(c, &seen);
         let nodes = &mesh.cells[c];
-        let cic: Vec<CrackInCell> = seen
-            .iter()
-            .map(|&g| CrackInCell {
-                lsn: nodes.iter().map(|&n| lsn[g][n]).collect(),
-                master: masters[g].and_then(|(m, coef)| seen.iter().position(|&s| s == m).map(|p| (p, coef))),
-            })
-            .collect();
-        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
         let mut cut = topose_boundary(mesh.cell_types[c], mesh.dim, &coords, &cic)
             .map_err(|e| a.err("FISSURE", format!("cutting boundary cell {}: {e}", mesh.cell_names[c])))?;
         if mesh.cell_types[c].dim() + 1 == mesh.dim {

@@ -826,19 +826,19 @@ fn constraints(
             for p in &z.packets {
                 let block =
                     |n: usize| zones.iter().filter(|o| o.crack < z.crack && o.packet_of.contains_key(&n)).count();
-                for (role, names) in
+                for (role, cmps) in
                     [("p_f", ["PRE_FLU", "PR2_FLU"]), ("q+", ["LAG_FLI", "LA2_FLI"]), ("q-", ["LAG_FLS", "LA2_FLS"])]
                 {
                     let ok = p.iter().any(|&n| {
                         let b = block(n);
-                        b < 2 && (fixed(n, names[b]) || (role == "p_f" && b == 1 && fixed(n, names[0])))
+                        b < 2 && (fixed(n, cmps[b]) || (role == "p_f" && b == 1 && fixed(n, cmps[0])))
                     });
                     if !ok {
                         return Err(free_msg(format!(
                             "the fracture unknown {role} ({}) of {} on packet {:?}",
-                            names.join("/"),
+                            cmps.join("/"),
                             xm.crack_names[z.crack],
-                            names_of(mesh, p)
+                            names(mesh, p)
                         )));
                     }
                 }
@@ -870,10 +870,6 @@ fn constraints(
         ));
     }
     Ok((cons, report, pins))
-}
-
-fn names_of(mesh: &crate::mesh::Mesh, nodes: &[usize]) -> Vec<String> {
-    names(mesh, nodes)
 }
 
 /// DEPL of an X-FEM solution on the mesh nodes: DX DY (DZ), PRE1 for HM

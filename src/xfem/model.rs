@@ -422,11 +422,6 @@ impl XfemModel {
         }
     }
 
-    /// The cell type of sub-cells in dimension `dim`.
-    pub fn subcell_type(dim: usize) -> CellType {
-        Cutting::subcell_type(dim)
-    }
-
     /// Number of enrichment sets over all nodes.
     pub fn n_sets(&self) -> usize {
         self.node_sets.iter().map(|s| s.len()).sum()
