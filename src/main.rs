@@ -111,7 +111,6 @@ enum MeshCmd {
 }
 
 fn mesh_command(action: MeshCmd) -> Result<(), aster::diag::Error> {
-    use aster::stages::mesh::describe;
     match action {
         MeshCmd::Info { file, mesh } => {
             let names = match mesh {
@@ -124,7 +123,7 @@ fn mesh_command(action: MeshCmd) -> Result<(), aster::diag::Error> {
             println!("file {}", file.display());
             for n in names {
                 let m = aster::med::read_mesh(&file, Some(&n))?;
-                print!("{}", describe(&m, &n));
+                print!("{}", m.describe(&n));
             }
             Ok(())
         }
@@ -135,7 +134,7 @@ fn mesh_command(action: MeshCmd) -> Result<(), aster::diag::Error> {
             let m = aster::mesh::generate::box_mesh(t, &n, &size)?;
             aster::med::write_mesh(&output, &m, &name)?;
             println!("wrote {}", output.display());
-            print!("{}", describe(&m, &name));
+            print!("{}", m.describe(&name));
             Ok(())
         }
     }

@@ -8,7 +8,7 @@
 //! Every test prints a message and passes when `../shared` is absent.
 
 use aster::mesh::Mesh;
-use aster::xfem::{crack_of, node_code};
+use aster::xfem::node_code;
 use std::path::Path;
 use std::process::Command;
 use std::rc::Rc;
@@ -148,28 +148,28 @@ fn wtnv149a_junction_side_and_codes() {
     let Some(m) = mesh("wtnv145a.mmed") else { return };
     let (c1, c2) = two_cracks(&m, |x| x[1] - 0.2 - 0.5 * x[0], |x| x[1] + 0.5 * x[0] + 0.2, &[2.0, -5.0]);
     {
-        let k2 = crack_of(&c2).unwrap();
+        let k2 = c2.clone();
         let n = k2.junction_node.unwrap();
         assert_eq!(m.node_names[n], "N40");
         assert_eq!(m.coords[n][..2], [2.0, -5.0]);
-        assert!((crack_of(&c1).unwrap().lsn[n] + 6.2).abs() < 1e-12);
+        assert!((c1.clone().lsn[n] + 6.2).abs() < 1e-12);
         let (master, c) = k2.master().unwrap();
         assert!(Rc::ptr_eq(master, &c1));
         assert_eq!(c, 1.0);
-        assert_eq!(crack_of(&c1).unwrap().enriched_nodes().len(), 38);
+        assert_eq!(c1.clone().enriched_nodes().len(), 38);
         assert_eq!(k2.enriched_nodes().len(), 23);
     }
     let both = [c1.clone(), c2.clone()];
     // Above FISS1 the branch does not exist: (+1, 0) → 14.
-    assert_eq!(node_code(&both, node_at(&m, &[0.0, 5.0])).unwrap(), 14);
-    assert_eq!(node_code(&both, node_at(&m, &[-5.0, 0.0])).unwrap(), 14);
+    assert_eq!(node_code(&both, node_at(&m, &[0.0, 5.0])), 14);
+    assert_eq!(node_code(&both, node_at(&m, &[-5.0, 0.0])), 14);
     // Below FISS1: φ2 < 0 → 5, φ2 > 0 → 7.
-    assert_eq!(node_code(&both, node_at(&m, &[0.0, -5.0])).unwrap(), 5);
-    assert_eq!(node_code(&both, node_at(&m, &[4.0, -1.0])).unwrap(), 7);
+    assert_eq!(node_code(&both, node_at(&m, &[0.0, -5.0])), 5);
+    assert_eq!(node_code(&both, node_at(&m, &[4.0, -1.0])), 7);
     // One crack: − → 1, + → 3.
-    assert_eq!(node_code(std::slice::from_ref(&c1), node_at(&m, &[0.0, -5.0])).unwrap(), 1);
-    assert_eq!(node_code(std::slice::from_ref(&c1), node_at(&m, &[0.0, 5.0])).unwrap(), 3);
-    assert_eq!(node_code(std::slice::from_ref(&c2), node_at(&m, &[0.0, 5.0])).unwrap(), 3);
+    assert_eq!(node_code(std::slice::from_ref(&c1), node_at(&m, &[0.0, -5.0])), 1);
+    assert_eq!(node_code(std::slice::from_ref(&c1), node_at(&m, &[0.0, 5.0])), 3);
+    assert_eq!(node_code(std::slice::from_ref(&c2), node_at(&m, &[0.0, 5.0])), 3);
 }
 
 #[test]
@@ -177,18 +177,18 @@ fn wtnv149b_junction_side_and_codes() {
     let Some(m) = mesh("wtnv145b.mmed") else { return };
     let (c1, c2) = two_cracks(&m, |x| x[2] - 0.5 * x[0] - 2.7, |x| x[2] - 7.3 + 0.5 * x[0], &[10.0, 0.0, 2.0]);
     {
-        let k2 = crack_of(&c2).unwrap();
+        let k2 = c2.clone();
         let n = k2.junction_node.unwrap();
         assert_eq!(m.coords[n], [10.0, 0.0, 2.0]);
-        assert!((crack_of(&c1).unwrap().lsn[n] + 5.7).abs() < 1e-12);
+        assert!((c1.clone().lsn[n] + 5.7).abs() < 1e-12);
         assert_eq!(k2.master().unwrap().1, 1.0);
-        assert_eq!(crack_of(&c1).unwrap().enriched_nodes().len(), 92);
+        assert_eq!(c1.clone().enriched_nodes().len(), 92);
         assert_eq!(k2.enriched_nodes().len(), 56);
     }
     let both = [c1.clone(), c2];
-    assert_eq!(node_code(&both, node_at(&m, &[0.0, 0.0, 10.0])).unwrap(), 14);
-    assert_eq!(node_code(&both, node_at(&m, &[0.0, 2.0, 0.0])).unwrap(), 5);
-    assert_eq!(node_code(&both, node_at(&m, &[10.0, 0.0, 5.0])).unwrap(), 7);
-    assert_eq!(node_code(std::slice::from_ref(&c1), node_at(&m, &[0.0, 0.0, 0.0])).unwrap(), 1);
-    assert_eq!(node_code(std::slice::from_ref(&c1), node_at(&m, &[0.0, 0.0, 10.0])).unwrap(), 3);
+    assert_eq!(node_code(&both, node_at(&m, &[0.0, 0.0, 10.0])), 14);
+    assert_eq!(node_code(&both, node_at(&m, &[0.0, 2.0, 0.0])), 5);
+    assert_eq!(node_code(&both, node_at(&m, &[10.0, 0.0, 5.0])), 7);
+    assert_eq!(node_code(std::slice::from_ref(&c1), node_at(&m, &[0.0, 0.0, 0.0])), 1);
+    assert_eq!(node_code(std::slice::from_ref(&c1), node_at(&m, &[0.0, 0.0, 10.0])), 3);
 }

@@ -5,10 +5,9 @@
 //! blocking the interface unknowns of every packet exactly once.
 //! Every test prints a message and passes when `../shared` is absent.
 
-use aster::concepts::ConceptRef;
 use aster::mesh::Mesh;
-use aster::xfem::crack_of;
 use aster::xfem::mortar::{contact_cells, cut_edges, vital_edges, CrackTopo, CutEdge, Packets};
+use aster::xfem::Crack;
 use std::collections::BTreeSet;
 use std::path::Path;
 use std::rc::Rc;
@@ -28,9 +27,9 @@ struct Case {
     beyond: usize,
 }
 
-fn build(mesh: Rc<Mesh>, c1: &ConceptRef, c2: &ConceptRef) -> Case {
-    let k1 = crack_of(c1).unwrap();
-    let k2 = crack_of(c2).unwrap();
+fn build(mesh: Rc<Mesh>, c1: &Rc<Crack>, c2: &Rc<Crack>) -> Case {
+    let k1 = c1.clone();
+    let k2 = c2.clone();
     let topo = [
         CrackTopo { lsn: &k1.lsn, status: &k1.status, heaviside_cells: &k1.heaviside_cells },
         CrackTopo { lsn: &k2.lsn, status: &k2.status, heaviside_cells: &k2.heaviside_cells },

@@ -8,13 +8,12 @@
 //! it sees (he ≠ 0), tetrahedra are positive.
 //! Every test prints a message and passes when `../shared` is absent.
 
-use aster::concepts::{Concept, ConceptData, ConceptKind, ConceptRef};
 use aster::fem::reference::jacobian_det;
 use aster::mesh::{CellType, Mesh};
 use aster::xfem::postmail::base36;
 use aster::xfem::topose::{CrackInCell, Cutting};
 use aster::xfem::topose_linear::topose_linear;
-use aster::xfem::{build_interface, crack_of};
+use aster::xfem::{build_interface, Crack};
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 use std::rc::Rc;
@@ -44,22 +43,19 @@ struct Case {
 
 fn run(file: &str, enri_group: Option<&str>, fiss: &[Fiss]) -> Option<Case> {
     let m = mesh(file)?;
-    let mc = Concept::new(ConceptKind::Maillage, ConceptData::Mesh(m.clone()));
     let enri = enri_group.map(|g| m.cell_groups[g].clone());
-    let mut cracks: Vec<ConceptRef> = Vec::new();
+    let mut cracks: Vec<Rc<Crack>> = Vec::new();
     for (i, f) in fiss.iter().enumerate() {
         let l = m.coords.iter().map(f.ln).collect();
         let (masters, point) = match &f.junction {
-            Some((k, p)) => (vec![cracks[*k].clone()], Some(&p[..m.dim])),
+            Some((k, p)) => (vec![(format!("FISS{}", k + 1), cracks[*k].clone())], Some(&p[..m.dim])),
             None => (vec![], None),
         };
-        let k = build_interface(mc.clone(), m.clone(), l, enri.clone(), &masters, point)
+        let k = build_interface("MA".into(), m.clone(), l, enri.clone(), &masters, point)
             .unwrap_or_else(|e| panic!("{file}: FISS{}: {}", i + 1, e.msg));
-        let c = Concept::new(ConceptKind::FissXfem, ConceptData::Crack(k));
-        c.set_name(&format!("FISS{}", i + 1));
-        cracks.push(c);
+        cracks.push(Rc::new(k));
     }
-    let refs: Vec<_> = cracks.iter().map(|c| crack_of(c).unwrap()).collect();
+    let refs: Vec<_> = cracks.clone();
     // The first declared master of each crack, as MODI_MODELE_XFEM sees it.
     let masters: Vec<Option<(usize, f64)>> = refs
         .iter()
@@ -365,9 +361,8 @@ fn visual_tout(ln: fn(&[f64; 3]) -> f64) -> Option<aster::xfem::postmail::Visual
     use aster::xfem::postmail::{visual_mesh, Prefixes};
     use aster::xfem::topose_linear::{orient_boundary, topose_linear_boundary};
     let m = mesh("ssnv173f.mmed")?;
-    let mc = Concept::new(ConceptKind::Maillage, ConceptData::Mesh(m.clone()));
     let l = m.coords.iter().map(ln).collect();
-    let k = build_interface(mc, m.clone(), l, None, &[], None).unwrap_or_else(|e| panic!("{}", e.msg));
+    let k = build_interface("MA".into(), m.clone(), l, None, &[], None).unwrap_or_else(|e| panic!("{}", e.msg));
     let mut cuttings = BTreeMap::new();
     let model: Vec<usize> = (0..m.ncells()).filter(|&c| m.cell_types[c] != CellType::Poi1).collect();
     for &c in &model {
@@ -460,29 +455,24 @@ fn ssnv173f_level_set_with_boundary_parents() {
 #[test]
 fn ssnv511a_regions_are_consistent_across_cells() {
     let Some(m) = mesh("ssnv511a.mmed") else { return };
-    let mc = Concept::new(ConceptKind::Maillage, ConceptData::Mesh(m.clone()));
     let ls = |f: &dyn Fn(&[f64; 3]) -> f64| -> Vec<f64> { m.coords.iter().map(f).collect() };
     let l1 = ls(&|x| x[1] - 1.0 - 0.5 * x[0]);
     let l2 = ls(&|x| x[0]);
     let l3 = ls(&|x| x[1]);
-    let mk = |name: &str, l: Vec<f64>, masters: &[ConceptRef], point: Option<&[f64]>| {
-        let k = build_interface(mc.clone(), m.clone(), l, None, masters, point).unwrap();
-        let c = Concept::new(ConceptKind::FissXfem, ConceptData::Crack(k));
-        c.set_name(name);
-        c
+    let mk = |l: Vec<f64>, masters: &[(String, Rc<Crack>)], point: Option<&[f64]>| {
+        Rc::new(build_interface("MA".into(), m.clone(), l, None, masters, point).unwrap())
     };
-    let c1 = mk("FISS1", l1.clone(), &[], None);
-    let c2 = mk("FISS2", l2.clone(), std::slice::from_ref(&c1), Some(&[0.0, -5.0]));
-    let c3 = mk("FISS3", l3.clone(), std::slice::from_ref(&c2), Some(&[5.0, 0.0]));
+    let c1 = mk(l1.clone(), &[], None);
+    let c2 = mk(l2.clone(), &[("FISS1".into(), c1.clone())], Some(&[0.0, -5.0]));
+    let c3 = mk(l3.clone(), &[("FISS2".into(), c2.clone())], Some(&[5.0, 0.0]));
     let cracks = vec![c1.clone(), c2.clone(), c3.clone()];
-    let coef = |c: &ConceptRef| crack_of(c).unwrap().master().unwrap().1;
+    let coef = |c: &Rc<Crack>| c.master().unwrap().1;
     let masters = vec![None, Some((0, coef(&c2))), Some((1, coef(&c3)))];
     let lsn = vec![l1, l2, l3];
     let model_cells: Vec<usize> = (0..m.ncells()).filter(|&c| m.cell_types[c].dim() == 2).collect();
     let mut cuts = BTreeMap::new();
     for &c in &model_cells {
-        let seen: Vec<usize> =
-            (0..3).filter(|&g| crack_of(&cracks[g]).unwrap().heaviside_cells.binary_search(&c).is_ok()).collect();
+        let seen: Vec<usize> = (0..3).filter(|&g| cracks[g].heaviside_cells.binary_search(&c).is_ok()).collect();
         if seen.is_empty() {
             continue;
         }
@@ -497,8 +487,7 @@ fn ssnv511a_regions_are_consistent_across_cells() {
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| m.coords[n]).collect();
         cuts.insert(c, (seen, topose_linear(m.cell_types[c], &coords, &cic).unwrap()));
     }
-    let enriched: Vec<Vec<bool>> =
-        cracks.iter().map(|c| (0..m.nnodes()).map(|n| crack_of(c).unwrap().enriched(n)).collect()).collect();
+    let enriched: Vec<Vec<bool>> = cracks.iter().map(|c| (0..m.nnodes()).map(|n| c.enriched(n)).collect()).collect();
     let names = vec!["FISS1".into(), "FISS2".into(), "FISS3".into()];
     let xm = aster::xfem::model::XfemModel::new(
         &m,
@@ -508,7 +497,7 @@ fn ssnv511a_regions_are_consistent_across_cells() {
         lsn,
         masters,
         enriched,
-        "SANS".into(),
+        aster::xfem::model::ContactKind::Sans,
         cuts,
         "AUTO",
     )

@@ -162,6 +162,16 @@ impl Args {
         Error::runtime(format!("{kw}: {msg}")).at(self.span_of(name))
     }
 
+    /// Attach keyword `kw`'s location to an error that has none, keeping its message and kind.
+    pub fn locate(&self, e: Error, kw: &str) -> Error {
+        if e.span.is_some() {
+            return e;
+        }
+        let mut out = self.err(kw, e.msg.clone());
+        out.kind = e.kind;
+        out
+    }
+
     /// The mandatory text of a keyword the schema guarantees.
     pub fn req_text(&self, name: &str) -> Result<&str> {
         self.text(name).ok_or_else(|| self.err(name, "a text value is required"))

@@ -12,6 +12,7 @@ pub mod model;
 pub mod result;
 pub mod table;
 
+use crate::diag::{Error, Result};
 use std::cell::{Ref, RefCell, RefMut};
 use std::fmt;
 use std::rc::Rc;
@@ -98,7 +99,7 @@ pub enum ConceptData {
     MaterialField(model::MaterialField),
     Load(model::Load),
     Result(result::ResultData),
-    Crack(crate::xfem::Crack),
+    Crack(Rc<crate::xfem::Crack>),
     Contact(model::Contact),
     Field(result::FieldData),
 }
@@ -148,6 +149,61 @@ impl Concept {
             format!("<{}>", self.kind)
         } else {
             n
+        }
+    }
+
+    fn holds_no(&self, what: &str) -> Error {
+        Error::runtime(format!("{} ({}) holds no {what}", self.label(), self.kind()))
+    }
+
+    /// The mesh behind a `maillage_sdaster`.
+    pub fn mesh(&self) -> Result<Rc<crate::mesh::Mesh>> {
+        match &*self.data() {
+            ConceptData::Mesh(m) => Ok(m.clone()),
+            _ => Err(self.holds_no("mesh")),
+        }
+    }
+
+    /// The model behind a `modele_sdaster`.
+    pub fn model(&self) -> Result<Ref<'_, model::Model>> {
+        Ref::filter_map(self.data(), |d| if let ConceptData::Model(m) = d { Some(m) } else { None })
+            .map_err(|_| self.holds_no("model"))
+    }
+
+    /// The result behind an `evol_*`.
+    pub fn result(&self) -> Result<Ref<'_, result::ResultData>> {
+        Ref::filter_map(self.data(), |d| if let ConceptData::Result(r) = d { Some(r) } else { None })
+            .map_err(|_| self.holds_no("result"))
+    }
+
+    /// A copy of the table behind a `table_sdaster`.
+    pub fn table(&self) -> Result<Table> {
+        match &*self.data() {
+            ConceptData::Table(t) => Ok(t.clone()),
+            _ => Err(self.holds_no("table")),
+        }
+    }
+
+    /// The field behind a `cham_no` / `cham_elem` / `carte`.
+    pub fn field(&self) -> Result<Ref<'_, result::FieldData>> {
+        Ref::filter_map(self.data(), |d| if let ConceptData::Field(f) = d { Some(f) } else { None })
+            .map_err(|_| self.holds_no("field"))
+    }
+
+    /// The values of a list of reals or integers (DEFI_LIST_REEL, DEFI_LIST_ENTI).
+    pub fn reals(&self) -> Result<Vec<f64>> {
+        match &*self.data() {
+            ConceptData::ListReal(v) => Ok(v.clone()),
+            ConceptData::ListInt(v) => Ok(v.iter().map(|i| *i as f64).collect()),
+            _ => Err(Error::runtime(format!("{} is not a list of reals", self.label()))),
+        }
+    }
+
+    /// The X-FEM crack behind a `fiss_xfem`.
+    pub fn crack(&self) -> Result<Rc<crate::xfem::Crack>> {
+        match &*self.data() {
+            ConceptData::Crack(k) => Ok(k.clone()),
+            _ => Err(self.holds_no("X-FEM crack")),
         }
     }
 }

@@ -153,8 +153,9 @@ pub struct Load {
 /// A ZONE of DEFI_CONTACT FORMULATION='XFEM' with ALGO_CONT='CZM'.
 #[derive(Debug, Clone)]
 pub struct ContactZone {
-    /// FISS_MAIT.
-    pub crack: ConceptRef,
+    /// FISS_MAIT, and its name for messages.
+    pub crack: Rc<crate::xfem::Crack>,
+    pub crack_name: String,
     /// INTEGRATION='GAUSS' with ORDRE_INT.
     pub order: i64,
     /// RELATION (CZM_LIN_MIX).

@@ -186,4 +186,33 @@ impl Mesh {
     pub fn cell_group_sizes(&self) -> BTreeMap<String, usize> {
         self.cell_groups.iter().map(|(k, v)| (k.clone(), v.len())).collect()
     }
+
+    /// A text summary of a mesh: nodes, cells per type, groups with their
+    /// sizes, bounding box (LIRE_MAILLAGE INFO=2, `aster mesh info`).
+    pub fn describe(&self, name: &str) -> String {
+        use std::fmt::Write as _;
+        let mesh = self;
+        let mut s = String::new();
+        let _ = writeln!(s, "mesh {name}: space dimension {}", mesh.dim);
+        let _ = writeln!(s, "  nodes: {}", mesh.nnodes());
+        let _ = writeln!(s, "  cells: {}", mesh.ncells());
+        for (t, n) in mesh.cell_type_counts() {
+            let _ = writeln!(s, "    {:<8} {n:>10}", t.name());
+        }
+        let _ = writeln!(s, "  groups of cells: {}", mesh.cell_groups.len());
+        for (g, n) in mesh.cell_group_sizes() {
+            let _ = writeln!(s, "    {g:<24} {n:>10}");
+        }
+        let _ = writeln!(s, "  groups of nodes: {}", mesh.node_groups.len());
+        for (g, n) in mesh.node_group_sizes() {
+            let _ = writeln!(s, "    {g:<24} {n:>10}");
+        }
+        if let Some((lo, hi)) = mesh.bounding_box() {
+            let axes = ["x", "y", "z"];
+            let parts: Vec<String> =
+                (0..mesh.dim.clamp(1, 3)).map(|k| format!("{} in [{}, {}]", axes[k], lo[k], hi[k])).collect();
+            let _ = writeln!(s, "  bounding box: {}", parts.join(", "));
+        }
+        s
+    }
 }

@@ -1,14 +1,14 @@
 //! Functions, nappes, lists and formulas: DEFI_*, CALC_FONCTION,
 //! CALC_FONC_INTERP, IMPR_FONCTION, LIRE_FONCTION, RECU_FONCTION.
 
-use super::tables::{filtered, table_of};
-use super::Ctx;
 use crate::catalog::args::{Args, Val};
 use crate::concepts::function::{Function, Interp, Nappe, Prol};
 use crate::concepts::table::Table;
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
 use crate::interp::{Formula, Value};
+use crate::stages::select::filtered;
+use crate::stages::Ctx;
 
 // ------------------------------------------------------------------ helpers
 
@@ -54,7 +54,7 @@ fn pairs(a: &Args, kw: &str) -> Result<(Vec<f64>, Vec<f64>)> {
     Ok((v.iter().step_by(2).copied().collect(), v.iter().skip(1).step_by(2).copied().collect()))
 }
 
-pub(super) fn list_of(c: &ConceptRef) -> Result<Vec<f64>> {
+pub fn list_of(c: &ConceptRef) -> Result<Vec<f64>> {
     match &*c.data() {
         ConceptData::ListReal(v) => Ok(v.clone()),
         ConceptData::ListInt(v) => Ok(v.iter().map(|i| *i as f64).collect()),
@@ -300,7 +300,7 @@ fn fractile(vals: &[f64], q: f64) -> f64 {
 /// Apply `op` to functions, or parameter by parameter to nappes.
 fn combine(a: &Args, ins: Vec<Input>, op: &dyn Fn(&[f64]) -> f64) -> Result<ConceptData> {
     let list = match a.concept("LIST_PARA") {
-        Some(c) => Some(list_of(&c)?),
+        Some(c) => Some(c.reals()?),
         None => None,
     };
     if ins.iter().all(|i| matches!(i, Input::F(_))) {
@@ -417,7 +417,7 @@ pub fn calc_fonction(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 pub fn calc_fonc_interp(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let c = a.req_concept("FONCTION")?;
     let x = match a.concept("LIST_PARA") {
-        Some(l) => list_of(&l)?,
+        Some(l) => l.reals()?,
         None => a.reals("VALE_PARA"),
     };
     let data = c.data();
@@ -475,7 +475,7 @@ pub fn impr_fonction(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         if let Some(c) = occ.concept("FONCTION") {
             let f = tabulated(&c).map_err(|e| e.at(occ.span))?;
             let x = match occ.concept("LIST_PARA") {
-                Some(l) => list_of(&l)?,
+                Some(l) => l.reals()?,
                 None => f.x.clone(),
             };
             let y = x.iter().map(|&v| f.eval(v)).collect::<Result<Vec<_>>>().map_err(|e| e.at(occ.span))?;
@@ -483,7 +483,7 @@ pub fn impr_fonction(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             cols.push((f.nom_resu.clone(), y));
         } else if let (Some(cx), Some(cy)) = (occ.concept("FONC_X"), occ.concept("FONC_Y")) {
             let (fx, fy) = (tabulated(&cx).map_err(|e| e.at(occ.span))?, tabulated(&cy).map_err(|e| e.at(occ.span))?);
-            let list = occ.concept("LIST_PARA").map(|l| list_of(&l)).transpose()?;
+            let list = occ.concept("LIST_PARA").map(|l| l.reals()).transpose()?;
             let t = list.clone().unwrap_or_else(|| union(&[&fx.x, &fy.x]));
             let xs = t.iter().map(|&v| fx.eval(v)).collect::<Result<Vec<_>>>().map_err(|e| e.at(occ.span))?;
             let ys = t.iter().map(|&v| fy.eval(v)).collect::<Result<Vec<_>>>().map_err(|e| e.at(occ.span))?;
@@ -584,7 +584,7 @@ pub fn recu_fonction(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         return Err(a.err("RESULTAT", "RECU_FONCTION from a result is not supported yet"));
     };
     let name = tc.label();
-    let t: Table = table_of(&tc)?;
+    let t: Table = tc.table()?;
     let rows = filtered(&t, a.facts("FILTRE"), &name)?;
     let (px, py) = (a.req_text("PARA_X")?, a.req_text("PARA_Y")?);
     let cx = t.column(px).ok_or_else(|| a.err("PARA_X", format!("table {name} has no parameter '{px}'")))?;

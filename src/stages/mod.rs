@@ -4,24 +4,24 @@
 //! and writes logical units, writes to the message file and records check
 //! verdicts. Stages never see the AST nor the file system layout.
 
+// The shared floor: entity selection and the solving core. Command families may use them, never each other.
+pub mod core;
+pub mod select;
+
+// The command families: one file or folder per family, named as its schema file in `catalog/commands/`.
 pub mod control;
 pub mod fields;
 pub mod functions;
-pub mod gmsh;
+pub mod loads;
+pub mod material;
 pub mod mesh;
 pub mod model;
-pub mod nonlinear;
-pub mod orient;
+pub mod post;
 pub mod print;
-pub mod repere;
-pub mod results;
-pub mod statics;
-pub mod table_io;
+pub mod solve;
 pub mod tables;
 pub mod tests;
-pub mod verdict;
 pub mod xfem;
-mod xfem_solve;
 
 use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
@@ -98,20 +98,20 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "TEST_FONCTION" => tests::test_fonction,
         "LIRE_MAILLAGE" => mesh::lire_maillage,
         "DEFI_GROUP" => mesh::defi_group,
-        "IMPR_RESU" => mesh::impr_resu,
+        "IMPR_RESU" => print::impr_resu,
         "AFFE_MODELE" => model::affe_modele,
-        "DEFI_MATERIAU" => model::defi_materiau,
-        "AFFE_MATERIAU" => model::affe_materiau,
-        "AFFE_CHAR_MECA" => model::affe_char_meca,
-        "AFFE_CHAR_MECA_F" => model::affe_char_meca_f,
-        "TEST_RESU" => results::test_resu,
-        "MECA_STATIQUE" => statics::meca_statique,
-        "CALC_CHAMP" => statics::calc_champ,
+        "DEFI_MATERIAU" => material::defi_materiau,
+        "AFFE_MATERIAU" => material::affe_materiau,
+        "AFFE_CHAR_MECA" => loads::affe_char_meca,
+        "AFFE_CHAR_MECA_F" => loads::affe_char_meca_f,
+        "TEST_RESU" => tests::test_resu::test_resu,
+        "MECA_STATIQUE" => solve::meca_statique,
+        "CALC_CHAMP" => fields::calc_champ,
         "CREA_CHAMP" => fields::crea_champ,
-        "STAT_NON_LINE" => nonlinear::stat_non_line,
-        "POST_RELEVE_T" => results::post_releve_t,
-        "MODI_MAILLAGE" => orient::modi_maillage,
-        "MODI_REPERE" => repere::modi_repere,
+        "STAT_NON_LINE" => solve::stat_non_line,
+        "POST_RELEVE_T" => post::post_releve_t,
+        "MODI_MAILLAGE" => mesh::orient::modi_maillage,
+        "MODI_REPERE" => fields::modi_repere,
         "DEFI_FISS_XFEM" => xfem::defi_fiss_xfem,
         "MODI_MODELE_XFEM" => xfem::modi_modele_xfem,
         "DEFI_CONTACT" => xfem::defi_contact,

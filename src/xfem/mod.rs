@@ -15,10 +15,7 @@ pub mod postmail;
 pub mod topose;
 pub mod topose_linear;
 
-use crate::concepts::{ConceptData, ConceptRef};
-use crate::diag::{Error, Result};
 use crate::mesh::Mesh;
-use std::cell::Ref;
 use std::rc::Rc;
 
 pub use levelset::{region_code, Status};
@@ -26,7 +23,9 @@ pub use levelset::{region_code, Status};
 /// A junction: the crack this one branches on and the side where the branch exists.
 #[derive(Debug, Clone)]
 pub struct Junction {
-    pub crack: ConceptRef,
+    pub crack: Rc<Crack>,
+    /// The master's name (DEFI_FISS_XFEM result), for messages.
+    pub name: String,
     /// c = −sign(φ_master) at the node nearest POINT: the branch exists where c·φ_master < 0.
     pub coef: f64,
     /// Declared under JONCTION (true) or reached through a declared master's own junctions.
@@ -35,7 +34,8 @@ pub struct Junction {
 
 /// A crack or interface defined by DEFI_FISS_XFEM.
 pub struct Crack {
-    pub mesh_concept: ConceptRef,
+    /// The name of the mesh concept the crack was defined on, for messages.
+    pub mesh_name: String,
     pub mesh: Rc<Mesh>,
     /// TYPE_DISCONTINUITE: only 'INTERFACE' for now.
     pub discontinuity: String,
@@ -62,9 +62,9 @@ pub struct Crack {
 impl std::fmt::Debug for Crack {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Crack")
-            .field("mesh", &self.mesh_concept.label())
+            .field("mesh", &self.mesh_name)
             .field("discontinuity", &self.discontinuity)
-            .field("junctions", &self.junctions.iter().map(|j| (j.crack.label(), j.coef)).collect::<Vec<_>>())
+            .field("junctions", &self.junctions.iter().map(|j| (j.name.as_str(), j.coef)).collect::<Vec<_>>())
             .field("enriched_nodes", &self.enriched_nodes().len())
             .field("heaviside_cells", &self.heaviside_cells.len())
             .finish()
@@ -83,34 +83,27 @@ impl Crack {
     }
 
     /// The first declared master crack and its coefficient, if this crack branches.
-    pub fn master(&self) -> Option<(&ConceptRef, f64)> {
+    pub fn master(&self) -> Option<(&Rc<Crack>, f64)> {
         self.junctions.iter().find(|j| j.declared).map(|j| (&j.crack, j.coef))
     }
 }
 
-/// The crack behind a concept.
-pub fn crack_of(c: &ConceptRef) -> Result<Ref<'_, Crack>> {
-    Ref::filter_map(c.data(), |d| if let ConceptData::Crack(k) = d { Some(k) } else { None })
-        .map_err(|_| Error::runtime(format!("{} ({}) holds no X-FEM crack", c.label(), c.kind())))
-}
-
 /// Signs of a node over a list of cracks, with the junction zeroing
 /// (`xlsjon`): a junction counts when its master is in the list.
-pub fn node_signs(cracks: &[ConceptRef], node: usize) -> Result<Vec<i32>> {
-    let refs: Vec<Ref<'_, Crack>> = cracks.iter().map(crack_of).collect::<Result<_>>()?;
-    let lsn: Vec<&[f64]> = refs.iter().map(|k| k.lsn.as_slice()).collect();
-    let master: Vec<Option<(usize, f64)>> = refs
+pub fn node_signs(cracks: &[Rc<Crack>], node: usize) -> Vec<i32> {
+    let lsn: Vec<&[f64]> = cracks.iter().map(|k| k.lsn.as_slice()).collect();
+    let master: Vec<Option<(usize, f64)>> = cracks
         .iter()
         .map(|k| {
             k.junctions.iter().find_map(|j| cracks.iter().position(|c| Rc::ptr_eq(c, &j.crack)).map(|m| (m, j.coef)))
         })
         .collect();
-    Ok(levelset::node_signs(&lsn, &master, node))
+    levelset::node_signs(&lsn, &master, node)
 }
 
 /// A node's own sub-domain code over a list of cracks (`xlsjon` then `xcalc_code`).
-pub fn node_code(cracks: &[ConceptRef], node: usize) -> Result<i32> {
-    Ok(region_code(&node_signs(cracks, node)?))
+pub fn node_code(cracks: &[Rc<Crack>], node: usize) -> i32 {
+    region_code(&node_signs(cracks, node))
 }
 
 /// What went wrong building a crack, and the keyword to blame.
@@ -129,13 +122,13 @@ fn fail(keyword: &'static str, msg: impl Into<String>) -> BuildError {
 /// does after evaluating FONC_LN: adjustment near zero (`xajuls`), junction
 /// coefficients from the node nearest `point` (`xinlsj`), cut cells, node
 /// status and enriched cells (`xenrch`). `enri_cells` is GROUP_MA_ENRI
-/// (None: every cell); `masters` the cracks of JONCTION/FISSURE.
+/// (None: every cell); `masters` the cracks of JONCTION/FISSURE with their names.
 pub fn build_interface(
-    mesh_concept: ConceptRef,
+    mesh_name: String,
     mesh: Rc<Mesh>,
     mut lsn: Vec<f64>,
     enri_cells: Option<Vec<usize>>,
-    masters: &[ConceptRef],
+    masters: &[(String, Rc<Crack>)],
     point: Option<&[f64]>,
 ) -> std::result::Result<Crack, BuildError> {
     let nn = mesh.nnodes();
@@ -156,19 +149,15 @@ pub fn build_interface(
         }
         let node = levelset::nearest_node(&mesh, point).ok_or_else(|| fail("POINT", "the mesh has no node"))?;
         junction_node = Some(node);
-        for (i, f) in masters.iter().enumerate() {
+        for (i, (fname, k)) in masters.iter().enumerate() {
             // A declared crack that a later declared one branches on is reached through it.
-            let mut inside_later = false;
-            for g in &masters[i + 1..] {
-                let k = crack_of(g).map_err(|e| fail("FISSURE", e.msg))?;
-                inside_later |= k.junctions.iter().any(|j| Rc::ptr_eq(&j.crack, f));
-            }
+            let inside_later =
+                masters[i + 1..].iter().any(|(_, g)| g.junctions.iter().any(|j| Rc::ptr_eq(&j.crack, k)));
             if inside_later {
                 continue;
             }
-            let k = crack_of(f).map_err(|e| fail("FISSURE", e.msg))?;
             if k.lsn.len() != nn {
-                return Err(fail("FISSURE", format!("{} is defined on another mesh", f.label())));
+                return Err(fail("FISSURE", format!("{fname} is defined on another mesh")));
             }
             let v = k.lsn[node];
             if v == 0.0 {
@@ -176,22 +165,21 @@ pub fn build_interface(
                     "POINT",
                     format!(
                         "the node nearest POINT, {}, lies on {} (level set 0): the side of the junction is undefined",
-                        mesh.node_names[node],
-                        f.label()
+                        mesh.node_names[node], fname
                     ),
                 ));
             }
-            junctions.push(Junction { crack: f.clone(), coef: -v.signum(), declared: true });
+            junctions.push(Junction { crack: k.clone(), name: fname.clone(), coef: -v.signum(), declared: true });
         }
         // The cracks the masters branch on, transitively, with their own coefficients.
         let mut start = 0;
         while start < junctions.len() {
             let end = junctions.len();
             for i in start..end {
-                let inner = crack_of(&junctions[i].crack).map_err(|e| fail("FISSURE", e.msg))?.junctions.clone();
+                let inner = junctions[i].crack.junctions.clone();
                 for k in inner {
                     if !junctions.iter().any(|e| Rc::ptr_eq(&e.crack, &k.crack)) {
-                        junctions.push(Junction { crack: k.crack, coef: k.coef, declared: false });
+                        junctions.push(Junction { declared: false, ..k });
                     }
                 }
             }
@@ -203,7 +191,7 @@ pub fn build_interface(
     }
     let mut jls = Vec::with_capacity(junctions.len());
     for j in &junctions {
-        let k = crack_of(&j.crack).map_err(|e| fail("FISSURE", e.msg))?;
+        let k = &j.crack;
         jls.push(levelset::JunctionLevelSets {
             side: k.lsn.iter().map(|v| j.coef * v).collect(),
             lst: if j.declared { vec![-1.0; nn] } else { k.lst.clone() },
@@ -231,7 +219,7 @@ pub fn build_interface(
     }
     let heaviside_cells = levelset::heaviside_cells(&mesh, &status);
     Ok(Crack {
-        mesh_concept,
+        mesh_name,
         mesh,
         discontinuity: "INTERFACE".into(),
         lsn,

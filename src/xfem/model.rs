@@ -18,6 +18,7 @@ use super::topose::Cutting;
 use crate::fem::reference::shape;
 use crate::mesh::{CellType, Mesh};
 use std::collections::BTreeMap;
+use std::rc::Rc;
 
 /// One X-FEM cell.
 #[derive(Debug, Clone)]
@@ -31,11 +32,37 @@ pub struct XfemCell {
     pub regions: Vec<i32>,
 }
 
+/// MODI_MODELE_XFEM's CONTACT: the interfaces are free surfaces ('SANS'),
+/// or carry the mortar multipliers of a contact/cohesive law ('MORTAR').
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactKind {
+    Sans,
+    Mortar,
+}
+
+impl ContactKind {
+    /// From Code_Aster's keyword value ('SANS', 'MORTAR').
+    pub fn from_name(s: &str) -> Option<ContactKind> {
+        match s {
+            "SANS" => Some(ContactKind::Sans),
+            "MORTAR" => Some(ContactKind::Mortar),
+            _ => None,
+        }
+    }
+    /// Code_Aster's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ContactKind::Sans => "SANS",
+            ContactKind::Mortar => "MORTAR",
+        }
+    }
+}
+
 /// What MODI_MODELE_XFEM adds to a model.
 #[derive(Debug, Clone)]
 pub struct XfemModel {
     /// The cracks (DEFI_FISS_XFEM concepts), model order.
-    pub cracks: Vec<crate::concepts::ConceptRef>,
+    pub cracks: Vec<Rc<super::Crack>>,
     /// Names of the cracks, model order.
     pub crack_names: Vec<String>,
     /// Nodal normal level set of each crack.
@@ -44,8 +71,8 @@ pub struct XfemModel {
     pub masters: Vec<Option<(usize, f64)>>,
     /// Heaviside-enriched nodes of each crack (node status).
     pub enriched: Vec<Vec<bool>>,
-    /// CONTACT: 'SANS' or 'MORTAR'.
-    pub contact: String,
+    /// CONTACT of MODI_MODELE_XFEM.
+    pub contact: ContactKind,
     /// The X-FEM cells.
     pub cells: BTreeMap<usize, XfemCell>,
     /// The X-FEM BOUNDARY cells (skin elements of the model with a
@@ -185,12 +212,12 @@ impl XfemModel {
     pub fn new(
         mesh: &Mesh,
         model_cells: &[usize],
-        cracks: Vec<crate::concepts::ConceptRef>,
+        cracks: Vec<Rc<super::Crack>>,
         crack_names: Vec<String>,
         lsn: Vec<Vec<f64>>,
         masters: Vec<Option<(usize, f64)>>,
         enriched: Vec<Vec<bool>>,
-        contact: String,
+        contact: ContactKind,
         cuttings: BTreeMap<usize, (Vec<usize>, Cutting)>,
         pretraitements: &str,
     ) -> Result<XfemModel, String> {
@@ -280,8 +307,7 @@ impl XfemModel {
         };
         // MODI_MODELE_XFEM's PRETRAITEMENTS (default 'AUTO').
         let quadratic = model_cells.iter().any(|&c| mesh.cell_types[c].nnodes() > mesh.cell_types[c].nvertices());
-        let with_tips =
-            xm.cracks.iter().any(|c| super::crack_of(c).map(|k| k.discontinuity == "FISSURE").unwrap_or(false));
+        let with_tips = xm.cracks.iter().any(|k| k.discontinuity == "FISSURE");
         if let Some(crit) = SetCriterion::new(pretraitements, quadratic, with_tips) {
             xm.drop_stiffless_sets(mesh, model_cells, &crit);
         }

@@ -2,9 +2,8 @@
 //! read in place, and FISS1/FISS2 of WTNV149 built from level-set closures.
 #![allow(dead_code)]
 
-use aster::concepts::{Concept, ConceptData, ConceptKind, ConceptRef};
 use aster::mesh::Mesh;
-use aster::xfem::build_interface;
+use aster::xfem::{build_interface, Crack};
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
 
@@ -31,15 +30,11 @@ pub fn two_cracks(
     f1: impl Fn(&[f64; 3]) -> f64,
     f2: impl Fn(&[f64; 3]) -> f64,
     point: &[f64],
-) -> (ConceptRef, ConceptRef) {
-    let mc = Concept::new(ConceptKind::Maillage, ConceptData::Mesh(mesh.clone()));
+) -> (Rc<Crack>, Rc<Crack>) {
     let l1 = mesh.coords.iter().map(&f1).collect();
-    let k1 = build_interface(mc.clone(), mesh.clone(), l1, None, &[], None).unwrap();
-    let c1 = Concept::new(ConceptKind::FissXfem, ConceptData::Crack(k1));
-    c1.set_name("FISS1");
+    let c1 = Rc::new(build_interface("MA".into(), mesh.clone(), l1, None, &[], None).unwrap());
     let l2 = mesh.coords.iter().map(&f2).collect();
-    let k2 = build_interface(mc, mesh.clone(), l2, None, std::slice::from_ref(&c1), Some(point)).unwrap();
-    let c2 = Concept::new(ConceptKind::FissXfem, ConceptData::Crack(k2));
-    c2.set_name("FISS2");
+    let masters = [("FISS1".to_string(), c1.clone())];
+    let c2 = Rc::new(build_interface("MA".into(), mesh.clone(), l2, None, &masters, Some(point)).unwrap());
     (c1, c2)
 }

@@ -11,9 +11,6 @@
 //! stops with a message. Interfaces without a contact zone carry no
 //! unknowns (free surfaces).
 
-use super::model::model_of;
-use super::statics::{elastic_of, load_value, loads, mat_param, solver_options};
-use super::Ctx;
 use crate::catalog::args::Args;
 use crate::concepts::model::{Contact, LoadItem, LoadValue, MaterialField, Role};
 use crate::concepts::result::{Field, ResultData, Step};
@@ -23,9 +20,14 @@ use crate::fem::assembly::{Assembler, ElementDofs, SparsityPattern};
 use crate::fem::dofs::{Constraints, DofMap};
 use crate::fem::elasticity::Modelisation;
 use crate::solve::{self, Method};
+use crate::stages::core::assembly::loads;
+use crate::stages::core::eval::load_value;
+use crate::stages::core::problem::{elastic_of, mat_param};
+use crate::stages::core::solver::solver_options;
+use crate::stages::Ctx;
 use crate::xfem::czm::{self, CzmParams, CzmState};
 use crate::xfem::discrete::{self, XDofs};
-use crate::xfem::model::XfemModel;
+use crate::xfem::model::{ContactKind, XfemModel};
 use crate::xfem::mortar;
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -91,7 +93,7 @@ fn direction(c: &str) -> Option<usize> {
 /// STAT_NON_LINE on an X-FEM model: the instants of INCREMENT, the initial
 /// state stored as order 0.
 pub fn stat_non_line_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result<Option<ConceptData>> {
-    let times = super::nonlinear::instants(a)?;
+    let times = crate::stages::core::newton::instants(a)?;
     solve_xfem(ctx, a, model, times, "STAT_NON_LINE")
 }
 
@@ -117,11 +119,11 @@ fn solve_xfem(
 ) -> Result<Option<ConceptData>> {
     let statics = command == "MECA_STATIQUE";
     if !statics {
-        super::nonlinear::refuse_unsupported_options(a)?;
+        crate::stages::core::newton::refuse_unsupported_options(a)?;
     }
     let t_start = Instant::now();
     let (mesh, xm, elements) = {
-        let m = model_of(model)?;
+        let m = model.model()?;
         (m.current_mesh(), m.xfem.clone().expect("an X-FEM model"), m.elements.clone())
     };
     let model_cells: Vec<usize> =
@@ -222,22 +224,21 @@ fn solve_xfem(
         }
         iter_cont_maxi = *icm;
         // Contact cells of every crack (xtyele), over the model's cracks.
-        let refs: Vec<std::cell::Ref<'_, crate::xfem::Crack>> =
-            xm.cracks.iter().map(crate::xfem::crack_of).collect::<Result<_>>()?;
-        let topo: Vec<mortar::CrackTopo> = refs
+        let topo: Vec<mortar::CrackTopo> = xm
+            .cracks
             .iter()
             .map(|k| mortar::CrackTopo { lsn: &k.lsn, status: &k.status, heaviside_cells: &k.heaviside_cells })
             .collect();
         let contact = mortar::contact_cells(&mesh, &topo);
-        if xm.contact != "MORTAR" {
+        if xm.contact != ContactKind::Mortar {
             return Err(a.err("CONTACT", "the cohesive zones need MODI_MODELE_XFEM CONTACT='MORTAR'"));
         }
         for z in cz {
             let g = xm.cracks.iter().position(|k| Rc::ptr_eq(k, &z.crack)).ok_or_else(|| {
-                a.err("CONTACT", format!("FISS_MAIT={} is not a crack of {}", z.crack.label(), model.label()))
+                a.err("CONTACT", format!("FISS_MAIT={} is not a crack of {}", z.crack_name, model.label()))
             })?;
             if zones.iter().any(|o| o.crack == g) {
-                return Err(a.err("CONTACT", format!("two zones on {}", z.crack.label())));
+                return Err(a.err("CONTACT", format!("two zones on {}", z.crack_name)));
             }
             // RUPT_FRAG of the cells the crack crosses (one material).
             let mut params: Option<CzmParams> = None;
@@ -261,14 +262,14 @@ fn solve_xfem(
                             "CHAM_MATER",
                             format!(
                                 "{}: several RUPT_FRAG materials along one interface are not supported yet",
-                                z.crack.label()
+                                z.crack_name
                             ),
                         ))
                     }
                     _ => {}
                 }
             }
-            let params = params.ok_or_else(|| a.err("CONTACT", format!("{} crosses no cell", z.crack.label())))?;
+            let params = params.ok_or_else(|| a.err("CONTACT", format!("{} crosses no cell", z.crack_name)))?;
             let cells = &contact[g];
             let master = xm.masters[g].map(|(m, c)| (xm.lsn[m].as_slice(), c));
             let edges = mortar::cut_edges(&mesh, cells, &xm.lsn[g], master);
@@ -968,7 +969,7 @@ fn trace_sets(
     jump: bool,
 ) -> Result<TraceConditions> {
     const EPS: f64 = 2e-6;
-    let eval = |x: &[f64; 3]| super::statics::eval_at(f, x, t);
+    let eval = |x: &[f64; 3]| crate::stages::core::eval::eval_at(f, x, t);
     let mut out: Vec<(usize, f64)> = (0..xm.node_sets[n].len()).map(|j| (j, 0.0)).collect();
     let mut done = vec![false; out.len()];
     for (c, nodes) in mesh.cells.iter().enumerate() {
@@ -1081,8 +1082,8 @@ fn function_jumps(
                 let alpha = xm.lsn[g][n] / (xm.lsn[g][n] - xm.lsn[g][k]);
                 let (xn, xk) = (mesh.coords[n], mesh.coords[k]);
                 let at = |s: f64| -> [f64; 3] { [0, 1, 2].map(|i| xn[i] + s * (xk[i] - xn[i])) };
-                let fa = super::statics::eval_at(f, &at(alpha * (1.0 - EPS)), t)?;
-                let fb = super::statics::eval_at(f, &at(alpha + EPS * (1.0 - alpha)), t)?;
+                let fa = crate::stages::core::eval::eval_at(f, &at(alpha * (1.0 - EPS)), t)?;
+                let fb = crate::stages::core::eval::eval_at(f, &at(alpha + EPS * (1.0 - alpha)), t)?;
                 if (fa - fb).abs() > 1e-9 * fa.abs().max(fb.abs()).max(1e-300) {
                     return Ok(true);
                 }
@@ -1147,6 +1148,6 @@ fn point_relation(
         .map_err(|e| Error::runtime(format!("locating xddlimf's point: {e}")))?
         .xi;
     let ff = crate::fem::reference::shape(ct, &xi);
-    let value = super::statics::eval_at(f, &xp, t)?;
+    let value = crate::stages::core::eval::eval_at(f, &xp, t)?;
     Ok(Some(PointRelation { cell: c, ff, region, value }))
 }

@@ -21,14 +21,13 @@
 //! into linear ones (and in version 1.0, quadrangles and 3D cells other than
 //! tetrahedra too), with Code_Aster's cutting tables.
 
-use super::model::{model_of, select_cells};
-use super::results::result_of;
-use super::Ctx;
 use crate::catalog::args::Args;
 use crate::concepts::result::Field;
 use crate::concepts::ConceptData;
 use crate::diag::Result;
 use crate::mesh::{CellType, Mesh};
+use crate::stages::select::select_cells;
+use crate::stages::Ctx;
 use std::fmt::Write as _;
 
 /// The element types of a Gmsh view, in the order Code_Aster writes them
@@ -228,15 +227,15 @@ fn print_occurrence(occ: &Args, first: bool, version: u8, out: &mut String, alar
     let full_name = rc.label();
     // The view names use the 8 characters of a Code_Aster concept name.
     let rname: String = full_name.chars().take(8).collect();
-    let r = result_of(&rc)?;
-    let model = model_of(&r.model)?;
+    let r = rc.result()?;
+    let model = r.model.model()?;
     let mesh = model.current_mesh();
     let mesh_name = model.mesh_concept.label();
-    let steps = super::mesh::selected_steps(&r, occ, &full_name)?;
+    let steps = super::selected_steps(&r, occ, &full_name)?;
     if steps.is_empty() {
         return Err(occ.err("RESULTAT", format!("result {full_name} holds no step")));
     }
-    let (explicit, names) = super::mesh::selected_fields(&steps, occ);
+    let (explicit, names) = super::selected_fields(&steps, occ);
     // Fields absent at the first order are skipped (irgmsh); nothing at all
     // is written when no field exists (PREPOST2_59).
     let names: Vec<String> = names.into_iter().filter(|n| steps[0].fields.contains_key(n)).collect();

@@ -9,10 +9,10 @@
 //! reference and computed values, the error and the tolerance (both in % for
 //! relative checks).
 
-use super::{CheckRecord, Ctx};
 use crate::catalog::args::{Args, Val};
 use crate::diag::Result;
 use crate::interp::format::float_repr;
+use crate::stages::{CheckRecord, Ctx};
 
 /// A computed value under test.
 #[derive(Debug, Clone)]

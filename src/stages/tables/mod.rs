@@ -1,22 +1,17 @@
 //! CREA_TABLE, LIRE_TABLE, CALC_TABLE, IMPR_TABLE, and the row filters they
 //! share with TEST_TABLE.
 
-use super::table_io;
-use super::Ctx;
+pub mod io;
+
 use crate::catalog::args::{Args, Val};
 use crate::concepts::table::{Cell, ColType, Column, Table};
-use crate::concepts::{ConceptData, ConceptRef};
+use crate::concepts::ConceptData;
 use crate::diag::{Error, Result};
 use crate::interp::format::percent;
 use crate::interp::Value;
-
-/// The table behind a concept (a clone: stages build new tables).
-pub fn table_of(c: &ConceptRef) -> Result<Table> {
-    match &*c.data() {
-        ConceptData::Table(t) => Ok(t.clone()),
-        _ => Err(Error::runtime(format!("{} ({}) holds no table", c.label(), c.kind()))),
-    }
-}
+use crate::stages::select::{filter_rows, filtered};
+use crate::stages::Ctx;
+use io as table_io;
 
 fn cell_of(v: &Val) -> Cell {
     match v {
@@ -34,122 +29,6 @@ fn type_of(c: &Cell) -> ColType {
         Cell::Real(_) | Cell::Empty => ColType::R,
         Cell::Text(t) => ColType::text_for(t.chars().count()),
     }
-}
-
-// ------------------------------------------------------------------ filters
-
-fn matches_eq(cell: &Cell, occ: &Args) -> Result<bool> {
-    let crit = occ.text("CRITERE").unwrap_or("RELATIF");
-    let prec = occ.real("PRECISION").unwrap_or(1e-3);
-    if occ.has("VALE_K") {
-        let Cell::Text(t) = cell else { return Ok(false) };
-        return Ok(occ.texts("VALE_K").iter().any(|k| k.trim_end() == t.trim_end()));
-    }
-    if occ.has("VALE_I") {
-        return Ok(match cell {
-            Cell::Int(i) => occ.ints("VALE_I").contains(i),
-            Cell::Real(r) => occ.ints("VALE_I").iter().any(|i| *i as f64 == *r),
-            _ => false,
-        });
-    }
-    if occ.has("VALE") {
-        let Some(x) = cell.as_f64() else { return Ok(false) };
-        return Ok(occ.reals("VALE").iter().any(|&v| {
-            if crit == "ABSOLU" {
-                (x - v).abs() <= prec
-            } else {
-                let (a, b) = (v * (1.0 - prec), v * (1.0 + prec));
-                a.min(b) <= x && x <= a.max(b)
-            }
-        }));
-    }
-    if occ.has("VALE_C") {
-        return Err(occ.err("VALE_C", "filters on complex values are not supported yet"));
-    }
-    Err(occ.err("CRIT_COMP", "this comparison needs VALE, VALE_I or VALE_K"))
-}
-
-fn ordering(cell: &Cell, occ: &Args) -> Result<Option<std::cmp::Ordering>> {
-    let refv = if let Some(v) = occ.real("VALE") {
-        Cell::Real(v)
-    } else if let Some(i) = occ.ints("VALE_I").first() {
-        Cell::Int(*i)
-    } else if let Some(k) = occ.text("VALE_K") {
-        Cell::Text(k.to_string())
-    } else {
-        return Err(occ.err("CRIT_COMP", "this comparison needs VALE, VALE_I or VALE_K"));
-    };
-    Ok(match (cell, &refv) {
-        (Cell::Text(a), Cell::Text(b)) => Some(a.as_str().cmp(b.as_str())),
-        (a, b) => match (a.as_f64(), b.as_f64()) {
-            (Some(x), Some(y)) => x.partial_cmp(&y),
-            _ => None,
-        },
-    })
-}
-
-/// The rows of `t` kept by one filter occurrence (NOM_PARA, CRIT_COMP, VALE*).
-pub fn filter_rows(t: &Table, rows: &[usize], occ: &Args, table: &str) -> Result<Vec<usize>> {
-    let para = occ.req_text("NOM_PARA")?;
-    let col = t.column(para).ok_or_else(|| {
-        let names: Vec<&str> = t.columns.iter().map(|c| c.name.as_str()).collect();
-        occ.err("NOM_PARA", format!("table {table} has no parameter '{para}' (parameters: {})", names.join(", ")))
-    })?;
-    let cells = &t.columns[col].cells;
-    let crit = occ.text("CRIT_COMP").unwrap_or("EQ");
-    use std::cmp::Ordering::*;
-    let mut out = Vec::new();
-    match crit {
-        "MAXI" | "MINI" | "MAXI_ABS" | "MINI_ABS" => {
-            let key = |r: usize| cells[r].as_f64().map(|x| if crit.ends_with("_ABS") { x.abs() } else { x });
-            let best = rows.iter().filter_map(|&r| key(r)).fold(None, |acc: Option<f64>, x| {
-                Some(match acc {
-                    None => x,
-                    Some(a) if crit.starts_with("MAXI") => a.max(x),
-                    Some(a) => a.min(x),
-                })
-            });
-            if let Some(b) = best {
-                out.extend(rows.iter().copied().filter(|&r| key(r) == Some(b)));
-            }
-        }
-        "REGEXP" => {
-            let pat = occ.text("VALE_K").ok_or_else(|| occ.err("CRIT_COMP", "REGEXP needs VALE_K"))?;
-            let re =
-                regex::Regex::new(pat).map_err(|e| occ.err("VALE_K", format!("invalid regular expression: {e}")))?;
-            out.extend(rows.iter().copied().filter(|&r| matches!(&cells[r], Cell::Text(t) if re.is_match(t))));
-        }
-        _ => {
-            for &r in rows {
-                let c = &cells[r];
-                let keep = match crit {
-                    "VIDE" => c.is_empty(),
-                    "NON_VIDE" => !c.is_empty(),
-                    _ if c.is_empty() => false,
-                    "EQ" => matches_eq(c, occ)?,
-                    "NE" => !matches_eq(c, occ)?,
-                    "GT" => ordering(c, occ)? == Some(Greater),
-                    "LT" => ordering(c, occ)? == Some(Less),
-                    "GE" => matches!(ordering(c, occ)?, Some(Greater | Equal)),
-                    "LE" => matches!(ordering(c, occ)?, Some(Less | Equal)),
-                    other => return Err(occ.err("CRIT_COMP", format!("'{other}' is not supported"))),
-                };
-                if keep {
-                    out.push(r);
-                }
-            }
-        }
-    }
-    Ok(out)
-}
-
-/// Apply all occurrences of FILTRE in turn.
-pub fn filtered(t: &Table, filters: &[Args], table: &str) -> Result<Vec<usize>> {
-    let mut rows: Vec<usize> = (0..t.nrows()).collect();
-    for f in filters {
-        rows = filter_rows(t, &rows, f, table)?;
-    }
-    Ok(rows)
 }
 
 // ------------------------------------------------------------------ CREA_TABLE
@@ -447,7 +326,7 @@ fn calcul(t: &Table, occ: &Args, table: &str) -> Result<Table> {
 pub fn calc_table(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let tc = a.req_concept("TABLE")?;
     let name = tc.label();
-    let mut t = table_of(&tc)?;
+    let mut t = tc.table()?;
     for occ in a.facts("ACTION") {
         let op = occ.req_text("OPERATION")?;
         t = match op {
@@ -482,7 +361,7 @@ pub fn calc_table(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             }
             "TRI" => sort_table(&t, &occ.texts("NOM_PARA"), occ.text("ORDRE") == Some("DECROISSANT"), occ, &name)?,
             "COMB" => {
-                let other = table_of(&occ.req_concept("TABLE")?)?;
+                let other = occ.req_concept("TABLE")?.table()?;
                 comb(
                     &t,
                     &other,
@@ -639,7 +518,7 @@ fn sort_table(t: &Table, paras: &[String], descending: bool, occ: &Args, name: &
 pub fn impr_table(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let tc = a.req_concept("TABLE")?;
     let name = tc.label();
-    let mut t = table_of(&tc)?;
+    let mut t = tc.table()?;
     let rows = filtered(&t, a.facts("FILTRE"), &name)?;
     t = t.select_rows(&rows);
     if let Some(tri) = a.fact("TRI") {

@@ -13,13 +13,12 @@
 //! [`geometry::flip_permutation`]. Like Code_Aster, the mesh of MAILLAGE is
 //! modified in place, reuse or not.
 
-use super::mesh::mesh_of;
-use super::Ctx;
 use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
 use crate::diag::Result;
 use crate::fem::geometry;
 use crate::mesh::Mesh;
+use crate::stages::Ctx;
 use std::collections::HashSet;
 use std::rc::Rc;
 
@@ -131,7 +130,7 @@ pub fn modi_maillage(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     }
     let c = a.req_concept("MAILLAGE")?;
     let label = c.label();
-    let mut mesh = (*mesh_of(&c).map_err(|e| a.err("MAILLAGE", e.msg))?).clone();
+    let mut mesh = (*c.mesh().map_err(|e| a.err("MAILLAGE", e.msg))?).clone();
     let mut text = String::new();
     // (factor keyword, skin groups, groups of the bounded cells, expected skin dimension)
     let forms: [(&str, &str, &str, Option<usize>); 3] = [

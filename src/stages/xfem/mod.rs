@@ -3,17 +3,18 @@
 //! nodal level sets (`xinils`) adjusted near zero (`xajuls`), the junction
 //! coefficients (`xinlsj`), the node status and enriched cells (`xenrch`).
 
-use super::statics::eval_at;
-use super::Ctx;
 use crate::catalog::args::Args;
 use crate::concepts::model::Model;
 use crate::concepts::result::Field;
 use crate::concepts::ConceptData;
 use crate::diag::{Error, Result};
+use crate::stages::core::eval::eval_at;
+use crate::stages::Ctx;
+use crate::xfem::model::ContactKind;
 use crate::xfem::model::XfemModel;
 use crate::xfem::postmail::{visual_mesh, NodeOrigin, Prefixes, VisualMesh};
 use crate::xfem::topose::{topose, topose_boundary, CrackInCell};
-use crate::xfem::{build_interface, crack_of, Crack};
+use crate::xfem::{build_interface, Crack};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::rc::Rc;
@@ -28,7 +29,7 @@ pub fn defi_fiss_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         return Err(a.err("CHAM_DISCONTINUITE", "CHAM_DISCONTINUITE='SIGM' is not supported yet"));
     }
     let mc = a.req_concept("MAILLAGE")?;
-    let mesh = super::mesh::mesh_of(&mc)?;
+    let mesh = mc.mesh()?;
     let mesh_name = mc.label();
 
     // Level sets (xinils, method FONCTION; an interface has lst = −1).
@@ -61,10 +62,16 @@ pub fn defi_fiss_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         None => None,
     };
     let (masters, point) = match a.fact("JONCTION") {
-        Some(j) => (j.concepts("FISSURE"), Some(j.reals("POINT"))),
+        Some(j) => (
+            j.concepts("FISSURE")
+                .iter()
+                .map(|c| c.crack().map(|k| (c.label(), k)).map_err(|e| j.locate(e, "FISSURE")))
+                .collect::<Result<Vec<_>>>()?,
+            Some(j.reals("POINT")),
+        ),
         None => (Vec::new(), None),
     };
-    let crack = build_interface(mc.clone(), mesh, lsn, enri_cells, &masters, point.as_deref()).map_err(|e| {
+    let crack = build_interface(mesh_name.clone(), mesh, lsn, enri_cells, &masters, point.as_deref()).map_err(|e| {
         match (e.keyword, a.fact("JONCTION")) {
             ("FISSURE" | "POINT", Some(j)) => j.err(e.keyword, e.msg),
             ("DEFI_FISS", _) => a.err("DEFI_FISS", e.msg),
@@ -74,7 +81,7 @@ pub fn defi_fiss_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     if a.int("INFO").unwrap_or(1) >= 2 {
         ctx.io.mess(&report(&crack)?);
     }
-    Ok(Some(ConceptData::Crack(crack)))
+    Ok(Some(ConceptData::Crack(Rc::new(crack))))
 }
 
 /// The INFO=2 summary: counts, junctions, and the nodes shared with each master.
@@ -83,7 +90,7 @@ fn report(k: &Crack) -> Result<String> {
     let nodes = k.enriched_nodes();
     let vol = |cells: &[usize]| cells.iter().filter(|&&c| mesh.cell_types[c].dim() == mesh.dim).count();
     let mut s = String::new();
-    let _ = writeln!(s, "  DEFI_FISS_XFEM (INTERFACE) on {}:", k.mesh_concept.label());
+    let _ = writeln!(s, "  DEFI_FISS_XFEM (INTERFACE) on {}:", k.mesh_name);
     let _ = writeln!(s, "    level-set values adjusted to 0       : {}", k.adjusted);
     let _ = writeln!(
         s,
@@ -104,17 +111,17 @@ fn report(k: &Crack) -> Result<String> {
         let _ = writeln!(s, "    junction: node nearest POINT         : {}", mesh.node_names[n]);
     }
     for j in &k.junctions {
-        let m = crack_of(&j.crack)?;
+        let m = &j.crack;
         let shared = nodes.iter().filter(|&&n| m.enriched(n)).count();
         let both: Vec<usize> =
             k.heaviside_cells.iter().copied().filter(|c| m.heaviside_cells.binary_search(c).is_ok()).collect();
         let _ = writeln!(
             s,
             "    junction on {} (c = {:+}{}): the branch exists where c*LSN({}) < 0",
-            j.crack.label(),
+            j.name,
             j.coef,
             if j.declared { "" } else { ", through a master" },
-            j.crack.label(),
+            j.name,
         );
         let _ = writeln!(s, "      nodes enriched by both             : {shared}");
         let _ = writeln!(
@@ -135,10 +142,12 @@ fn report(k: &Crack) -> Result<String> {
 /// sub-cells (TOPOSE), the regions and the enrichment sets of the nodes.
 pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     a.refuse(&["MODELE_THER"])?;
-    let contact = a.text("CONTACT").unwrap_or("SANS").to_string();
-    if contact == "STANDARD" {
-        return Err(a.err("CONTACT", "CONTACT='STANDARD' is not supported yet (only 'SANS' and 'MORTAR')"));
-    }
+    let contact_name = a.text("CONTACT").unwrap_or("SANS");
+    let Some(contact) = ContactKind::from_name(contact_name) else {
+        return Err(
+            a.err("CONTACT", format!("CONTACT='{contact_name}' is not supported yet (only 'SANS' and 'MORTAR')"))
+        );
+    };
     // DECOUPE_FACETTE: the facets are always the faces of the sub-cells on
     // the interface. Code_Aster's default cuts the interface polygon of each
     // parent on its own; on a straight interface in an affine linear cell
@@ -147,27 +156,32 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
     // SOUS_ELEMENTS only.
     let mo_in = a.req_concept("MODELE_IN")?;
     let quadratic_model = {
-        let m = super::model::model_of(&mo_in)?;
+        let m = mo_in.model()?;
         let mesh = m.current_mesh();
         (0..mesh.ncells()).any(|c| {
             m.elements[c].as_ref().is_some_and(|e| e.role == crate::concepts::model::Role::Bulk)
                 && mesh.cell_types[c].nnodes() > mesh.cell_types[c].nvertices()
         })
     };
-    if a.text("DECOUPE_FACETTE").is_some_and(|d| d != "SOUS_ELEMENTS") && contact == "MORTAR" && quadratic_model {
+    if a.text("DECOUPE_FACETTE").is_some_and(|d| d != "SOUS_ELEMENTS")
+        && contact == ContactKind::Mortar
+        && quadratic_model
+    {
         return Err(a.err(
             "DECOUPE_FACETTE",
             "with CONTACT='MORTAR' on quadratic cells only DECOUPE_FACETTE='SOUS_ELEMENTS' is supported yet",
         ));
     }
     let mo = a.req_concept("MODELE_IN")?;
-    let cracks = a.concepts("FISSURE");
-    let (mesh, mesh_concept, elements) = {
-        let m = super::model::model_of(&mo)?;
+    let crack_concepts = a.concepts("FISSURE");
+    let cracks: Vec<Rc<Crack>> =
+        crack_concepts.iter().map(|c| c.crack().map_err(|e| a.locate(e, "FISSURE"))).collect::<Result<_>>()?;
+    let (mesh, elements) = {
+        let m = mo.model()?;
         if m.xfem.is_some() {
             return Err(a.err("MODELE_IN", format!("{} is already an X-FEM model", mo.label())));
         }
-        (m.current_mesh(), m.mesh_concept.clone(), m.elements.clone())
+        (m.current_mesh(), m.elements.clone())
     };
     let model_cells: Vec<usize> = (0..mesh.ncells())
         .filter(|&c| elements[c].as_ref().is_some_and(|e| e.role == crate::concepts::model::Role::Bulk))
@@ -177,12 +191,13 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
     let mut enriched = Vec::new();
     let mut hcells: Vec<Vec<usize>> = Vec::new();
     let mut names = Vec::new();
-    for (i, f) in cracks.iter().enumerate() {
-        let k = crack_of(f)?;
-        if !Rc::ptr_eq(&k.mesh_concept, &mesh_concept) || k.lsn.len() != mesh.nnodes() {
+    for (i, (f, k)) in crack_concepts.iter().zip(&cracks).enumerate() {
+        // The same mesh: the one the crack was defined on, or that mesh since changed in place.
+        let same_mesh = Rc::ptr_eq(&k.mesh, &mesh) || k.mesh.coords == mesh.coords;
+        if !same_mesh || k.lsn.len() != mesh.nnodes() {
             return Err(a.err("FISSURE", format!("{} is defined on another mesh than {}", f.label(), mo.label())));
         }
-        if cracks[..i].iter().any(|g| Rc::ptr_eq(g, f)) {
+        if cracks[..i].iter().any(|g| Rc::ptr_eq(g, k)) {
             return Err(a.err("FISSURE", format!("{} is given twice", f.label())));
         }
         lsn.push(k.lsn.clone());
@@ -192,8 +207,9 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
         masters.push(k.master().and_then(|(m, c)| cracks.iter().position(|g| Rc::ptr_eq(g, m)).map(|p| (p, c))));
         if let Some((m, _)) = k.master() {
             if !cracks.iter().any(|g| Rc::ptr_eq(g, m)) {
+                let master = k.junctions.iter().find(|j| j.declared).map(|j| j.name.as_str()).unwrap_or("its master");
                 return Err(
-                    a.err("FISSURE", format!("{} branches on {}, which must be in FISSURE too", f.label(), m.label()))
+                    a.err("FISSURE", format!("{} branches on {master}, which must be in FISSURE too", f.label()))
                 );
             }
         }
@@ -297,7 +313,7 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
         r.len() > 1
     });
     let mut s = String::new();
-    let _ = writeln!(s, "  MODI_MODELE_XFEM ({} crack(s), CONTACT='{}'):", cracks.len(), xm.contact);
+    let _ = writeln!(s, "  MODI_MODELE_XFEM ({} crack(s), CONTACT='{}'):", cracks.len(), xm.contact.name());
     let _ = writeln!(s, "    X-FEM cells                          : {} ({} cut)", xm.cells.len(), ncut.count());
     let _ = writeln!(s, "    sub-cells                            : {nsub}");
     if !xm.boundary.is_empty() {
@@ -319,6 +335,7 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
         );
     }
     ctx.io.mess(&s);
+    let mesh_concept = mo.model()?.mesh_concept.clone();
     Ok(Some(ConceptData::Model(Model { mesh, mesh_concept, elements, xfem: Some(Rc::new(xm)) })))
 }
 
@@ -351,17 +368,17 @@ pub fn defi_contact(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     }
     let mo = a.req_concept("MODELE")?;
     let cracks = {
-        let m = super::model::model_of(&mo)?;
+        let m = mo.model()?;
         let Some(xm) = &m.xfem else {
             return Err(a.err("MODELE", format!("{} is not an X-FEM model (MODI_MODELE_XFEM)", mo.label())));
         };
-        if xm.contact != "MORTAR" {
+        if xm.contact != ContactKind::Mortar {
             return Err(a.err(
                 "MODELE",
                 format!(
                     "{}: CONTACT='{}' in MODI_MODELE_XFEM; the cohesive zones need CONTACT='MORTAR'",
                     mo.label(),
-                    xm.contact
+                    xm.contact.name()
                 ),
             ));
         }
@@ -388,12 +405,14 @@ pub fn defi_contact(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         if occ.items.iter().any(|i| i.name == "TOLE_PROJ_EXT" && !i.defaulted) {
             return Err(occ.err("TOLE_PROJ_EXT", "not supported yet"));
         }
-        let crack = occ.req_concept("FISS_MAIT")?;
+        let fc = occ.req_concept("FISS_MAIT")?;
+        let crack = fc.crack().map_err(|e| occ.locate(e, "FISS_MAIT"))?;
         if !cracks.iter().any(|k| Rc::ptr_eq(k, &crack)) {
-            return Err(occ.err("FISS_MAIT", format!("{} is not a crack of model {}", crack.label(), mo.label())));
+            return Err(occ.err("FISS_MAIT", format!("{} is not a crack of model {}", fc.label(), mo.label())));
         }
         zones.push(crate::concepts::model::ContactZone {
             crack,
+            crack_name: fc.label(),
             order: occ.int("ORDRE_INT").unwrap_or(6),
             relation: rel.to_string(),
         });
@@ -406,7 +425,7 @@ pub fn defi_contact(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 
 /// The visual mesh of an X-FEM model (POST_MAIL_XFEM's algorithm).
 fn visual_of(model: &crate::concepts::ConceptRef, prefixes: &Prefixes) -> Result<(VisualMesh, Rc<XfemModel>)> {
-    let m = super::model::model_of(model)?;
+    let m = model.model()?;
     let Some(xm) = m.xfem.clone() else {
         return Err(Error::runtime(format!("{} is not an X-FEM model (MODI_MODELE_XFEM)", model.label())));
     };
@@ -468,9 +487,9 @@ pub fn post_mail_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let rc = a.req_concept("RESULTAT")?;
     let visu = a.req_concept("MODELE_VISU")?;
-    let r = super::results::result_of(&rc)?;
+    let r = rc.result()?;
     let (vm, xm) = visual_of(&r.model, &Prefixes::default()).map_err(|e| e.at(a.span))?;
-    let vmesh = super::model::model_of(&visu)?.current_mesh();
+    let vmesh = visu.model()?.current_mesh();
     if vmesh.nnodes() != vm.mesh.nnodes() {
         return Err(a.err(
             "MODELE_VISU",
@@ -483,7 +502,7 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             ),
         ));
     }
-    let mesh = super::model::model_of(&r.model)?.current_mesh();
+    let mesh = r.model.model()?.current_mesh();
     let ndim = mesh.dim;
     let mut steps = Vec::new();
     for st in &r.steps {

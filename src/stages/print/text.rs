@@ -1,13 +1,12 @@
 //! IMPR_RESU FORMAT='RESULTAT': fields of results printed as text tables to a
 //! unit (the .resu file by default), one block per field and order number.
 
-use super::model::{model_of, select_cells, select_nodes};
-use super::results::result_of;
-use super::Ctx;
 use crate::catalog::args::Args;
 use crate::concepts::result::Field;
 use crate::concepts::ConceptData;
 use crate::diag::Result;
+use crate::stages::select::{select_cells, select_nodes};
+use crate::stages::Ctx;
 use std::fmt::Write as _;
 
 fn num(v: f64) -> String {
@@ -21,7 +20,7 @@ fn num(v: f64) -> String {
 /// Print the result fields of one RESU occurrence.
 fn print_occurrence(occ: &Args, out: &mut String) -> Result<()> {
     if let (Some(mc), false) = (occ.concept("MAILLAGE"), occ.has("RESULTAT")) {
-        let mesh = super::mesh::mesh_of(&mc)?;
+        let mesh = mc.mesh()?;
         print_mesh(&mesh, &mc.label(), out);
         return Ok(());
     }
@@ -49,8 +48,8 @@ fn print_occurrence(occ: &Args, out: &mut String) -> Result<()> {
     }
     let rc = occ.req_concept("RESULTAT")?;
     let name = rc.label();
-    let r = result_of(&rc)?;
-    let model = model_of(&r.model)?;
+    let r = rc.result()?;
+    let model = r.model.model()?;
     let mesh = model.current_mesh();
     let mesh_name = model.mesh_concept.label();
     let restrict_nodes =

@@ -1,17 +1,20 @@
 //! TEST_TABLE and TEST_FONCTION: locate the value, then hand it to the verdict.
 
-use super::tables::{filtered, table_of};
-use super::verdict::{check, check_text, Scalar};
-use super::Ctx;
+pub mod test_resu;
+pub mod verdict;
+
 use crate::catalog::args::Args;
 use crate::concepts::table::Cell;
 use crate::concepts::ConceptData;
 use crate::diag::Result;
+use crate::stages::select::filtered;
+use crate::stages::Ctx;
+use verdict::{check, check_text, Scalar};
 
 pub fn test_table(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let tc = a.req_concept("TABLE")?;
     let name = tc.label();
-    let t = table_of(&tc)?;
+    let t = tc.table()?;
     let para = a.req_text("NOM_PARA")?;
     let col = t.column(para).ok_or_else(|| {
         let names: Vec<&str> = t.columns.iter().map(|c| c.name.as_str()).collect();
@@ -39,7 +42,7 @@ pub fn test_table(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                     a.err("TYPE_TEST", format!("no numeric value of '{para}' in the selected rows of table {name}"))
                 );
             }
-            let v = super::verdict::type_test(tt, &nums);
+            let v = verdict::type_test(tt, &nums);
             let all_int = cells.iter().all(|c| matches!(c, Cell::Int(_)));
             if all_int && a.has("VALE_CALC_I") {
                 Scalar::I(v as i64)

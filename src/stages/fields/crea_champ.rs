@@ -9,136 +9,14 @@
 //! makes it point out). The components are the stress vector `σ·n` and its
 //! normal part, `σ·t1`, `σ·t2` and the shear `t1·σ·n`.
 
-use super::model::{model_of, select_cells, select_nodes};
-use super::results::result_of;
-use super::statics::Problem;
-use super::Ctx;
 use crate::catalog::args::Args;
-use crate::concepts::model::Role;
 use crate::concepts::result::{Field, FieldData};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
-use crate::fem::elasticity::{self, Modelisation};
-use crate::fem::geometry::{bounded_cells, cell_coords, node_to_cells};
-use crate::fem::reference::{node_coords, shape_deriv};
-use crate::mesh::{CellType, Mesh};
-use std::collections::HashSet;
-use std::rc::Rc;
-
-/// Component names of SIRO_ELEM, in Code_Aster's order (`EPJSIGM`).
-pub const SIRO_COMPONENTS: [&str; 16] = [
-    "SIG_NX", "SIG_NY", "SIG_NZ", "SIG_N", "SIG_TX", "SIG_TY", "SIG_TZ", "SIG_T1X", "SIG_T1Y", "SIG_T1Z", "SIG_T1",
-    "SIG_T2X", "SIG_T2Y", "SIG_T2Z", "SIG_T2", "SIG_TN",
-];
-
-type M3 = [[f64; 3]; 3];
-
-fn mat_vec(s: &M3, v: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|i| s[i][0] * v[0] + s[i][1] * v[1] + s[i][2] * v[2])
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
-    let l = dot(a, a).sqrt();
-    (l.is_finite() && l > 0.0).then(|| a.map(|x| x / l))
-}
-
-/// The rosette of a plane skin cell (a segment of a 2D model): its node
-/// coordinates and the mean stress tensor (SIXX, SIYY, SIZZ, SIXY) over its
-/// nodes give the 16 components of [`SIRO_COMPONENTS`]; None for a
-/// degenerate segment.
-pub fn rosette_2d(t: CellType, coords: &[[f64; 3]], sig: [f64; 4]) -> Option<[f64; 16]> {
-    // Mean tangent over the nodes (the shape derivatives at each node).
-    let mut t1 = [0.0; 3];
-    for xi in node_coords(t) {
-        for (g, x) in shape_deriv(t, xi).iter().zip(coords) {
-            for k in 0..2 {
-                t1[k] += g[0] * x[k];
-            }
-        }
-    }
-    let t1 = unit(t1)?;
-    let n = unit(cross(t1, [0.0, 0.0, 1.0]))?;
-    let t2 = cross(n, t1);
-    let s: M3 = [[sig[0], sig[3], 0.0], [sig[3], sig[1], 0.0], [0.0, 0.0, sig[2]]];
-    let (sn, st1, st2) = (mat_vec(&s, n), mat_vec(&s, t1), mat_vec(&s, t2));
-    Some([
-        sn[0],
-        sn[1],
-        sn[2],
-        dot(n, sn),
-        st1[0],
-        st1[1],
-        st1[2],
-        st1[0],
-        st1[1],
-        st1[2],
-        dot(t1, st1),
-        st2[0],
-        st2[1],
-        st2[2],
-        dot(t2, st2),
-        dot(t1, sn),
-    ])
-}
-
-/// SIRO_ELEM of one displacement field: on every skin cell of the model that
-/// `only` keeps, the rosette of the stress of the bulk cell it bounds (the
-/// first one, in cell order, when it lies between two).
-pub(super) fn siro_elem(p: &Problem, model: &ConceptRef, depl: &[f64], only: &dyn Fn(&usize) -> bool) -> Result<Field> {
-    let mesh = &p.mesh;
-    let md = p.modelisation;
-    if md == Modelisation::ThreeD {
-        return Err(Error::runtime("SIRO_ELEM on 3D models is not supported yet (plane models are)"));
-    }
-    let dim = md.dim();
-    let m = model_of(model)?;
-    let node_cells = node_to_cells(mesh);
-    let bulk: HashSet<usize> = p.bulk.iter().copied().collect();
-    let mut cells = vec![None; mesh.cells.len()];
-    for (c, e) in m.elements.iter().enumerate() {
-        if e.as_ref().map(|e| e.role) != Some(Role::Skin) || !only(&c) || mesh.cell_types[c].dim() != dim - 1 {
-            continue;
-        }
-        let Some(&v) = bounded_cells(mesh, &node_cells, c, Some(&bulk)).first() else { continue };
-        let ue: Vec<f64> = mesh.cells[v].iter().flat_map(|&nd| (0..dim).map(move |k| depl[nd * dim + k])).collect();
-        let mat = &p.materials[v].as_ref().expect("bulk cells have a material").0;
-        let (_, sig) = elasticity::node_fields(md, mat, mesh.cell_types[v], &cell_coords(mesh, v), &ue)
-            .map_err(|e| Error::runtime(format!("cell {}: {e}", mesh.cell_names[v])))?;
-        let mut mean = [0.0; 4];
-        for nd in &mesh.cells[c] {
-            let i = mesh.cells[v].iter().position(|x| x == nd).expect("a bounded cell holds the skin's nodes");
-            for (k, m) in mean.iter_mut().enumerate() {
-                *m += sig[i][k] / mesh.cells[c].len() as f64;
-            }
-        }
-        let r = rosette_2d(mesh.cell_types[c], &cell_coords(mesh, c), mean)
-            .ok_or_else(|| Error::runtime(format!("SIRO_ELEM: cell {} is degenerate", mesh.cell_names[c])))?;
-        cells[c] = Some(r.to_vec());
-    }
-    Ok(Field::Elem { components: SIRO_COMPONENTS.iter().map(|s| s.to_string()).collect(), cells })
-}
+use crate::stages::select::{select_cells, select_nodes};
+use crate::stages::Ctx;
 
 // ------------------------------------------------------------------ CREA_CHAMP
-
-/// The standalone field behind a concept.
-pub fn field_of(c: &ConceptRef) -> Result<std::cell::Ref<'_, FieldData>> {
-    std::cell::Ref::filter_map(c.data(), |d| if let ConceptData::Field(f) = d { Some(f) } else { None })
-        .map_err(|_| Error::runtime(format!("{} ({}) holds no field", c.label(), c.kind())))
-}
-
-/// The current mesh of a field's mesh concept.
-pub fn mesh_of_field(f: &FieldData) -> Result<Rc<Mesh>> {
-    super::mesh::mesh_of(&f.mesh_concept)
-}
-
 /// The location part of TYPE_CHAM and whether the values are functions.
 fn type_cham(a: &Args) -> Result<(&str, bool)> {
     let t = a.req_text("TYPE_CHAM")?;
@@ -173,12 +51,12 @@ fn affe(a: &Args) -> Result<FieldData> {
     }
     let (mesh_concept, on_model): (ConceptRef, Option<Vec<bool>>) = match a.concept("MODELE") {
         Some(mo) => {
-            let m = model_of(&mo)?;
+            let m = mo.model()?;
             (m.mesh_concept.clone(), Some(m.elements.iter().map(Option::is_some).collect()))
         }
         None => (a.req_concept("MAILLAGE")?, None),
     };
-    let mesh = super::mesh::mesh_of(&mesh_concept)?;
+    let mesh = mesh_concept.mesh()?;
     let mesh_name = mesh_concept.label();
     let prol_zero = a.text("PROL_ZERO") == Some("OUI");
     // Components in order of first appearance.
@@ -265,7 +143,7 @@ fn extr(a: &Args) -> Result<FieldData> {
         return Err(a.err("TYPE_MAXI", "not supported yet"));
     }
     let name = rc.label();
-    let r = result_of(&rc)?;
+    let r = rc.result()?;
     let step = if let Some(n) = a.int("NUME_ORDRE") {
         r.by_order(n).ok_or_else(|| a.err("NUME_ORDRE", format!("result {name} has no order number {n}")))?
     } else if let Some(t) = a.real("INST") {
@@ -289,7 +167,7 @@ fn extr(a: &Args) -> Result<FieldData> {
             format!("field {cham} of {name} is not a field of type {}", a.text("TYPE_CHAM").unwrap()),
         ));
     }
-    let mesh_concept = model_of(&r.model)?.mesh_concept.clone();
+    let mesh_concept = r.model.model()?.mesh_concept.clone();
     Ok(FieldData { mesh_concept, field: field.clone(), functions: None })
 }
 
@@ -345,16 +223,16 @@ fn eval(a: &Args) -> Result<FieldData> {
         return Err(a.err("TYPE_CHAM", "the result of EVAL is a field of reals (*_R)"));
     }
     let fc = a.req_concept("CHAM_F")?;
-    let f = field_of(&fc)?;
+    let f = fc.field()?;
     let (Field::Elem { components, .. }, Some(funcs)) = (&f.field, &f.functions) else {
         return Err(a.err("CHAM_F", format!("{} is not a field of functions by cell (ELEM_*_F)", fc.label())));
     };
     if loc != "ELEM" {
         return Err(a.err("TYPE_CHAM", format!("TYPE_CHAM='{}' is not supported yet", a.text("TYPE_CHAM").unwrap())));
     }
-    let mesh = mesh_of_field(&f)?;
+    let mesh = f.mesh_concept.mesh()?;
     let paras = a.concepts("CHAM_PARA");
-    let para_data: Vec<std::cell::Ref<'_, FieldData>> = paras.iter().map(field_of).collect::<Result<_>>()?;
+    let para_data: Vec<std::cell::Ref<'_, FieldData>> = paras.iter().map(|c| c.field()).collect::<Result<_>>()?;
     for (p, d) in paras.iter().zip(&para_data) {
         if !matches!(d.field, Field::Elem { .. }) || d.functions.is_some() {
             return Err(a.err("CHAM_PARA", format!("{} is not a field of reals by cell (ELEM_*_R)", p.label())));
@@ -372,20 +250,6 @@ fn eval(a: &Args) -> Result<FieldData> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn rosette_of_a_uniform_stress_on_a_vertical_segment() {
-        // σ = [[100, 50], [50, 200]], SIZZ = 7; segment from (1,0) to (1,1): t1 = ey, n = ex.
-        let r = rosette_2d(CellType::Seg2, &[[1.0, 0.0, 0.0], [1.0, 1.0, 0.0]], [100.0, 200.0, 7.0, 50.0]).unwrap();
-        let want = [100.0, 50.0, 0.0, 100.0, 50.0, 200.0, 0.0, 50.0, 200.0, 0.0, 200.0, 0.0, 0.0, 7.0, 7.0, 50.0];
-        for (k, (g, w)) in r.iter().zip(want).enumerate() {
-            assert!((g - w).abs() < 1e-12, "{}: {g} != {w}", SIRO_COMPONENTS[k]);
-        }
-        // Reversed segment: n = -ey... here t1 = -ey, n = -ex; σ·n and σ·t1 change sign, the
-        // normal and tangential stresses and the shear t1·σ·n do not.
-        let r = rosette_2d(CellType::Seg2, &[[1.0, 1.0, 0.0], [1.0, 0.0, 0.0]], [100.0, 200.0, 7.0, 50.0]).unwrap();
-        assert_eq!((r[0], r[1], r[3], r[4], r[10], r[15]), (-100.0, -50.0, 100.0, -50.0, 200.0, 50.0));
-    }
 
     #[test]
     fn eval_of_a_formula_on_two_fields() {
@@ -408,14 +272,5 @@ mod tests {
         let funcs = vec![None, Some(vec![Some(form)]), None];
         let e = eval_cells(&funcs, &[&siro, &neut], &names).unwrap_err();
         assert!(e.msg.contains("SIG_N") && e.msg.contains("M2"), "{}", e.msg);
-    }
-
-    #[test]
-    fn rosette_of_a_top_edge_run_backwards() {
-        // The top edge of a square run counterclockwise: from (1,1) to (0,1): t1 = -ex, n = ey.
-        let r = rosette_2d(CellType::Seg2, &[[1.0, 1.0, 0.0], [0.0, 1.0, 0.0]], [100.0, 200.0, 0.0, 50.0]).unwrap();
-        assert_eq!(&r[..4], &[50.0, 200.0, 0.0, 200.0]);
-        assert_eq!((r[4], r[5], r[10], r[15]), (-100.0, -50.0, 100.0, -50.0));
-        assert!(rosette_2d(CellType::Seg2, &[[1.0, 1.0, 0.0], [1.0, 1.0, 0.0]], [0.0; 4]).is_none());
     }
 }

@@ -21,14 +21,13 @@
 //! reduced to the transformed components, and a node missing one of them
 //! loses them all (as in Code_Aster).
 
-use super::model::{model_of, select_nodes};
-use super::results::result_of;
-use super::Ctx;
 use crate::catalog::args::Args;
 use crate::concepts::result::{Field, ResultData, Step};
 use crate::concepts::ConceptData;
 use crate::diag::Result;
 use crate::mesh::Mesh;
+use crate::stages::select::select_nodes;
+use crate::stages::Ctx;
 
 type Mat3 = [[f64; 3]; 3];
 
@@ -197,11 +196,11 @@ pub fn modi_repere(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     }
     let rc = a.req_concept("RESULTAT")?;
     let (model, material, loads, steps) = {
-        let r = result_of(&rc).map_err(|e| a.err("RESULTAT", e.msg))?;
+        let r = rc.result().map_err(|e| a.err("RESULTAT", e.msg))?;
         (r.model.clone(), r.material.clone(), r.loads.clone(), r.steps.clone())
     };
     let (mesh, mesh_name) = {
-        let m = model_of(&model).map_err(|e| a.err("RESULTAT", e.msg))?;
+        let m = model.model().map_err(|e| a.err("RESULTAT", e.msg))?;
         (m.current_mesh(), m.mesh_concept.label())
     };
     // Steps.

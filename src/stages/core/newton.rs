@@ -1,0 +1,213 @@
+//! Time stepping and Newton iterations shared by the solving stages: the instants of INCREMENT, the
+//! options no driver implements yet, Code_Aster's CONVERGENCE criteria and the Newton loop on a
+//! reduced system.
+
+use crate::catalog::args::Args;
+use crate::concepts::ConceptData;
+use crate::diag::Result;
+
+/// The computation instants: the list, cut to INST_INIT / INST_FIN (or their
+/// NUME_INST_* forms). The first one is the initial state.
+pub fn instants(a: &Args) -> Result<Vec<f64>> {
+    let inc = a.fact("INCREMENT").ok_or_else(|| a.err("INCREMENT", "INCREMENT is required"))?;
+    let lc = inc.req_concept("LIST_INST")?;
+    let list = match &*lc.data() {
+        ConceptData::ListReal(v) => v.clone(),
+        _ => {
+            return Err(inc.err(
+                "LIST_INST",
+                format!("{} ({}) is not supported yet: give a DEFI_LIST_REEL", lc.label(), lc.kind()),
+            ))
+        }
+    };
+    let prec = inc.real("PRECISION").unwrap_or(1e-6);
+    let find = |t: f64, kw: &str| -> Result<usize> {
+        list.iter()
+            .position(|&x| (x - t).abs() <= prec * t.abs().max(1e-300) || x == t)
+            .ok_or_else(|| inc.err(kw, format!("{t} is not an instant of {}", lc.label())))
+    };
+    let first = match (inc.int("NUME_INST_INIT"), inc.real("INST_INIT")) {
+        (Some(n), _) => n as usize,
+        (None, Some(t)) => find(t, "INST_INIT")?,
+        _ => 0,
+    };
+    let last = match (inc.int("NUME_INST_FIN"), inc.real("INST_FIN")) {
+        (Some(n), _) => n as usize,
+        (None, Some(t)) => find(t, "INST_FIN")?,
+        _ => list.len() - 1,
+    };
+    if first >= last || last >= list.len() {
+        return Err(inc.err("LIST_INST", format!("no step to compute between instants #{first} and #{last}")));
+    }
+    Ok(list[first..=last].to_vec())
+}
+
+/// STAT_NON_LINE keywords no driver implements yet, and METHODE other than NEWTON.
+pub fn refuse_unsupported_options(a: &Args) -> Result<()> {
+    a.refuse(&[
+        "SOUS_STRUC",
+        "ETAT_INIT",
+        "RECH_LINEAIRE",
+        "PILOTAGE",
+        "OBSERVATION",
+        "SUIVI_DDL",
+        "CRIT_QUALITE",
+        "ENERGIE",
+        "CRIT_STAB",
+        "RESULTAT",
+    ])?;
+    if a.text("METHODE").is_some_and(|m| m != "NEWTON") {
+        return Err(a.err("METHODE", "only METHODE='NEWTON' is supported yet"));
+    }
+    Ok(())
+}
+
+/// The largest absolute value of a vector (0 for an empty one).
+pub fn inf_norm(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+/// STAT_NON_LINE's CONVERGENCE as Code_Aster reads it: RESI_GLOB_RELA (1e-6 when neither it nor
+/// RESI_GLOB_MAXI is given), RESI_GLOB_MAXI, ITER_GLOB_MAXI (10). The criteria we do not compute stop the
+/// run by name: RESI_REFE_RELA, RESI_COMP_RELA, and ARRET='NON' (going on after a step that did not
+/// converge).
+#[derive(Debug, Clone, Copy)]
+pub struct Convergence {
+    pub resi_rela: Option<f64>,
+    pub resi_maxi: Option<f64>,
+    pub iter_max: usize,
+}
+
+impl Default for Convergence {
+    fn default() -> Self {
+        Convergence { resi_rela: Some(1e-6), resi_maxi: None, iter_max: 10 }
+    }
+}
+
+impl Convergence {
+    pub fn from_args(a: &Args) -> Result<Convergence> {
+        let Some(c) = a.fact("CONVERGENCE") else { return Ok(Convergence::default()) };
+        for kw in ["RESI_REFE_RELA", "RESI_COMP_RELA"] {
+            if c.given(kw) {
+                return Err(c.err(kw, "not supported yet (RESI_GLOB_RELA and RESI_GLOB_MAXI are)"));
+            }
+        }
+        if c.text("ARRET") == Some("NON") {
+            return Err(
+                c.err("ARRET", "ARRET='NON' (going on after a step that did not converge) is not supported yet")
+            );
+        }
+        let resi_rela = c.real("RESI_GLOB_RELA");
+        let resi_maxi = c.real("RESI_GLOB_MAXI");
+        Ok(Convergence {
+            resi_rela: if resi_rela.is_none() && resi_maxi.is_none() { Some(1e-6) } else { resi_rela },
+            resi_maxi,
+            iter_max: c.int("ITER_GLOB_MAXI").unwrap_or(10).max(1) as usize,
+        })
+    }
+
+    /// After `iters` corrections, do the residual norms meet every given criterion?
+    pub fn converged(&self, iters: usize, rel: f64, abs: f64) -> bool {
+        iters > 0
+            && self.resi_rela.map(|tol| rel <= tol).unwrap_or(true)
+            && self.resi_maxi.map(|tol| abs <= tol).unwrap_or(true)
+    }
+}
+
+/// One instant of a Newton solve, as a driver sees it: the residual at the current state and a
+/// correction of that state.
+pub trait NewtonStep {
+    /// The residual at the current state: its relative and absolute norms.
+    fn residual(&mut self) -> Result<(f64, f64)>;
+    /// Solve the tangent system for a correction and apply it.
+    fn correct(&mut self) -> Result<()>;
+}
+
+/// How a Newton solve of one instant ended.
+#[derive(Debug, Clone, Copy)]
+pub struct Converged {
+    pub iters: usize,
+    pub rel: f64,
+    pub abs: f64,
+}
+
+/// The Newton loop of one instant at time `t`: corrections until `conv` holds, or exactly one when
+/// `linear` (MECA_STATIQUE: one solve, no convergence test). A solve that does not converge in
+/// ITER_GLOB_MAXI corrections stops with a message located at CONVERGENCE.
+pub fn newton(a: &Args, conv: &Convergence, linear: bool, t: f64, step: &mut impl NewtonStep) -> Result<Converged> {
+    let mut iters = 0;
+    loop {
+        let (rel, abs) = step.residual()?;
+        let done = if linear { iters == 1 } else { conv.converged(iters, rel, abs) };
+        if done {
+            return Ok(Converged { iters, rel, abs });
+        }
+        if iters == conv.iter_max {
+            let iter_max = conv.iter_max;
+            return Err(a.err(
+                "CONVERGENCE",
+                format!(
+                    "Newton did not converge at INST={t} in {iter_max} iterations (relative residual {rel:.3e}, \
+                     absolute {abs:.3e})"
+                ),
+            ));
+        }
+        step.correct()?;
+        iters += 1;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// x² = 2 by Newton from 1: converges quadratically, within the default criterion.
+    struct Sqrt2 {
+        x: f64,
+    }
+    impl NewtonStep for Sqrt2 {
+        fn residual(&mut self) -> Result<(f64, f64)> {
+            let r = (self.x * self.x - 2.0).abs();
+            Ok((r / 2.0, r))
+        }
+        fn correct(&mut self) -> Result<()> {
+            self.x -= (self.x * self.x - 2.0) / (2.0 * self.x);
+            Ok(())
+        }
+    }
+
+    fn args() -> Args {
+        Args::default()
+    }
+
+    #[test]
+    fn newton_converges_quadratically_and_counts_corrections() {
+        let mut s = Sqrt2 { x: 1.0 };
+        let c = newton(&args(), &Convergence::default(), false, 1.0, &mut s).unwrap();
+        assert!((s.x - 2f64.sqrt()).abs() < 1e-11);
+        assert_eq!(c.iters, 4);
+        assert!(c.rel <= 1e-6);
+    }
+
+    #[test]
+    fn newton_stops_at_iter_glob_maxi() {
+        let mut s = Sqrt2 { x: 1.0 };
+        let conv = Convergence { iter_max: 2, ..Convergence::default() };
+        let e = newton(&args(), &conv, false, 3.0, &mut s).unwrap_err();
+        assert!(e.msg.contains("did not converge at INST=3 in 2 iterations"), "{}", e.msg);
+    }
+
+    #[test]
+    fn a_linear_solve_is_one_correction() {
+        let mut s = Sqrt2 { x: 1.0 };
+        let c = newton(&args(), &Convergence::default(), true, 0.0, &mut s).unwrap();
+        assert_eq!(c.iters, 1);
+        assert_eq!(s.x, 1.5);
+    }
+
+    #[test]
+    fn inf_norm_of_mixed_signs() {
+        assert_eq!(inf_norm(&[1.0, -3.5, 2.0]), 3.5);
+        assert_eq!(inf_norm(&[]), 0.0);
+    }
+}

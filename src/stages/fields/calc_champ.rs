@@ -1,0 +1,361 @@
+//! CALC_CHAMP: fields computed from a result (strains, stresses at nodes, equivalent stresses, SIRO_ELEM).
+
+use crate::catalog::args::Args;
+use crate::concepts::model::Role;
+use crate::concepts::result::{Field, ResultData};
+use crate::concepts::{ConceptData, ConceptRef};
+use crate::diag::{Error, Result};
+use crate::mesh::{CellType, Mesh};
+use crate::stages::Ctx;
+use std::collections::HashSet;
+
+use crate::fem::elasticity::{self, Modelisation};
+use crate::fem::geometry::{bounded_cells, cell_coords, node_to_cells};
+use crate::fem::reference::{node_coords, shape_deriv};
+use crate::stages::core::problem::{coords_of, problem, Problem};
+/// Component names of SIRO_ELEM, in Code_Aster's order (`EPJSIGM`).
+pub const SIRO_COMPONENTS: [&str; 16] = [
+    "SIG_NX", "SIG_NY", "SIG_NZ", "SIG_N", "SIG_TX", "SIG_TY", "SIG_TZ", "SIG_T1X", "SIG_T1Y", "SIG_T1Z", "SIG_T1",
+    "SIG_T2X", "SIG_T2Y", "SIG_T2Z", "SIG_T2", "SIG_TN",
+];
+
+pub type M3 = [[f64; 3]; 3];
+
+fn mat_vec(s: &M3, v: [f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|i| s[i][0] * v[0] + s[i][1] * v[1] + s[i][2] * v[2])
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
+fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
+    let l = dot(a, a).sqrt();
+    (l.is_finite() && l > 0.0).then(|| a.map(|x| x / l))
+}
+
+/// The rosette of a plane skin cell (a segment of a 2D model): its node
+/// coordinates and the mean stress tensor (SIXX, SIYY, SIZZ, SIXY) over its
+/// nodes give the 16 components of [`SIRO_COMPONENTS`]; None for a
+/// degenerate segment.
+pub fn rosette_2d(t: CellType, coords: &[[f64; 3]], sig: [f64; 4]) -> Option<[f64; 16]> {
+    // Mean tangent over the nodes (the shape derivatives at each node).
+    let mut t1 = [0.0; 3];
+    for xi in node_coords(t) {
+        for (g, x) in shape_deriv(t, xi).iter().zip(coords) {
+            for k in 0..2 {
+                t1[k] += g[0] * x[k];
+            }
+        }
+    }
+    let t1 = unit(t1)?;
+    let n = unit(cross(t1, [0.0, 0.0, 1.0]))?;
+    let t2 = cross(n, t1);
+    let s: M3 = [[sig[0], sig[3], 0.0], [sig[3], sig[1], 0.0], [0.0, 0.0, sig[2]]];
+    let (sn, st1, st2) = (mat_vec(&s, n), mat_vec(&s, t1), mat_vec(&s, t2));
+    Some([
+        sn[0],
+        sn[1],
+        sn[2],
+        dot(n, sn),
+        st1[0],
+        st1[1],
+        st1[2],
+        st1[0],
+        st1[1],
+        st1[2],
+        dot(t1, st1),
+        st2[0],
+        st2[1],
+        st2[2],
+        dot(t2, st2),
+        dot(t1, sn),
+    ])
+}
+
+/// SIRO_ELEM of one displacement field: on every skin cell of the model that
+/// `only` keeps, the rosette of the stress of the bulk cell it bounds (the
+/// first one, in cell order, when it lies between two).
+pub fn siro_elem(p: &Problem, model: &ConceptRef, depl: &[f64], only: &dyn Fn(&usize) -> bool) -> Result<Field> {
+    let mesh = &p.mesh;
+    let md = p.modelisation;
+    if md == Modelisation::ThreeD {
+        return Err(Error::runtime("SIRO_ELEM on 3D models is not supported yet (plane models are)"));
+    }
+    let dim = md.dim();
+    let m = model.model()?;
+    let node_cells = node_to_cells(mesh);
+    let bulk: HashSet<usize> = p.bulk.iter().copied().collect();
+    let mut cells = vec![None; mesh.cells.len()];
+    for (c, e) in m.elements.iter().enumerate() {
+        if e.as_ref().map(|e| e.role) != Some(Role::Skin) || !only(&c) || mesh.cell_types[c].dim() != dim - 1 {
+            continue;
+        }
+        let Some(&v) = bounded_cells(mesh, &node_cells, c, Some(&bulk)).first() else { continue };
+        let ue: Vec<f64> = mesh.cells[v].iter().flat_map(|&nd| (0..dim).map(move |k| depl[nd * dim + k])).collect();
+        let mat = &p.materials[v].as_ref().expect("bulk cells have a material").0;
+        let (_, sig) = elasticity::node_fields(md, mat, mesh.cell_types[v], &cell_coords(mesh, v), &ue)
+            .map_err(|e| Error::runtime(format!("cell {}: {e}", mesh.cell_names[v])))?;
+        let mut mean = [0.0; 4];
+        for nd in &mesh.cells[c] {
+            let i = mesh.cells[v].iter().position(|x| x == nd).expect("a bounded cell holds the skin's nodes");
+            for (k, m) in mean.iter_mut().enumerate() {
+                *m += sig[i][k] / mesh.cells[c].len() as f64;
+            }
+        }
+        let r = rosette_2d(mesh.cell_types[c], &cell_coords(mesh, c), mean)
+            .ok_or_else(|| Error::runtime(format!("SIRO_ELEM: cell {} is degenerate", mesh.cell_names[c])))?;
+        cells[c] = Some(r.to_vec());
+    }
+    Ok(Field::Elem { components: SIRO_COMPONENTS.iter().map(|s| s.to_string()).collect(), cells })
+}
+
+// ------------------------------------------------------------------ CALC_CHAMP
+
+/// Average ELNO values to nodes over the cells sharing each node.
+fn to_nodes(mesh: &Mesh, cells: &[Option<Vec<f64>>], ncmp: usize) -> Vec<f64> {
+    let mut sum = vec![0.0; mesh.coords.len() * ncmp];
+    let mut count = vec![0usize; mesh.coords.len()];
+    for (c, v) in cells.iter().enumerate() {
+        let Some(v) = v else { continue };
+        for (i, &n) in mesh.cells[c].iter().enumerate() {
+            count[n] += 1;
+            for k in 0..ncmp {
+                sum[n * ncmp + k] += v[i * ncmp + k];
+            }
+        }
+    }
+    for n in 0..count.len() {
+        for k in 0..ncmp {
+            sum[n * ncmp + k] = if count[n] > 0 { sum[n * ncmp + k] / count[n] as f64 } else { f64::NAN };
+        }
+    }
+    sum
+}
+
+/// The components of SIEQ_* we compute (Code_Aster's SIEQ also has the
+/// principal directions VECT_*, not computed yet).
+const SIEQ_COMPONENTS: [&str; 8] = ["VMIS", "TRESCA", "PRIN_1", "PRIN_2", "PRIN_3", "VMIS_SG", "TRSIG", "TRIAX"];
+
+/// Principal stresses (ascending) of a symmetric tensor given as
+/// [xx, yy, zz, xy, (xz, yz)], by cyclic Jacobi rotations (accurate to
+/// rounding even for nearly equal eigenvalues).
+fn principal(s: &[f64]) -> [f64; 3] {
+    let (xz, yz) = if s.len() >= 6 { (s[4], s[5]) } else { (0.0, 0.0) };
+    let mut a = [[s[0], s[3], xz], [s[3], s[1], yz], [xz, yz, s[2]]];
+    for _ in 0..50 {
+        let off = a[0][1].abs() + a[0][2].abs() + a[1][2].abs();
+        let scale = a[0][0].abs() + a[1][1].abs() + a[2][2].abs() + off;
+        if off <= f64::EPSILON * 1e-3 * scale.max(f64::MIN_POSITIVE) {
+            break;
+        }
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            if a[p][q] == 0.0 {
+                continue;
+            }
+            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+            let t = if theta == 0.0 { 1.0 } else { t };
+            let c = 1.0 / (t * t + 1.0).sqrt();
+            let sn = t * c;
+            // A <- Jᵀ A J with the rotation in the (p, q) plane.
+            for row in a.iter_mut() {
+                let (akp, akq) = (row[p], row[q]);
+                row[p] = c * akp - sn * akq;
+                row[q] = sn * akp + c * akq;
+            }
+            let (rp, rq) = (a[p], a[q]);
+            for k in 0..3 {
+                a[p][k] = c * rp[k] - sn * rq[k];
+                a[q][k] = sn * rp[k] + c * rq[k];
+            }
+        }
+    }
+    let mut e = [a[0][0], a[1][1], a[2][2]];
+    e.sort_by(|x, y| x.total_cmp(y));
+    e
+}
+
+/// SIEQ components of one stress tensor.
+fn equivalent_stresses(s: &[f64]) -> Vec<f64> {
+    let tr = s[0] + s[1] + s[2];
+    let m = tr / 3.0;
+    let shear: f64 = s.iter().skip(3).map(|v| v * v).sum();
+    let j2 = 0.5 * ((s[0] - m).powi(2) + (s[1] - m).powi(2) + (s[2] - m).powi(2)) + shear;
+    let vmis = (3.0 * j2).sqrt();
+    let pr = principal(s);
+    let triax = if vmis > 0.0 { m / vmis } else { 0.0 };
+    vec![vmis, pr[2] - pr[0], pr[0], pr[1], pr[2], if tr < 0.0 { -vmis } else { vmis }, tr, triax]
+}
+
+pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    const DONE: &[&str] = &[
+        "SIGM_ELNO",
+        "SIGM_NOEU",
+        "EPSI_ELNO",
+        "EPSI_NOEU",
+        "SIEF_ELGA",
+        "SIGM_ELGA",
+        "EPSI_ELGA",
+        "SIRO_ELEM",
+        "SIEQ_ELNO",
+        "SIEQ_NOEU",
+    ];
+    let rc = a.req_concept("RESULTAT")?;
+    let mut wanted = Vec::new();
+    for kw in ["CONTRAINTE", "DEFORMATION", "CRITERES"] {
+        for o in a.texts(kw) {
+            if !DONE.contains(&o.as_str()) {
+                return Err(a.err(kw, format!("option {o} is not supported yet")));
+            }
+            wanted.push(o);
+        }
+    }
+    for kw in ["ENERGIE", "FORCE", "VARI_INTERNE", "ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"] {
+        if a.given(kw) {
+            return Err(a.err(kw, "not supported yet"));
+        }
+    }
+    let (model, chmat, mut steps) = {
+        let r = rc.result()?;
+        let chmat = r.material.clone().ok_or_else(|| a.err("RESULTAT", "the result has no material field"))?;
+        (r.model.clone(), chmat, r.steps.clone())
+    };
+    let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
+    let mesh = &p.mesh;
+    let md = p.modelisation;
+    let restrict = if a.has("GROUP_MA") || a.has("MAILLE") {
+        Some(crate::stages::select::select_cells(mesh, a, &model.model()?.mesh_concept.label())?)
+    } else {
+        None
+    };
+    let only = |c: &usize| restrict.as_ref().map(|r| r.contains(c)).unwrap_or(true);
+    // The result's own model and material are used; other step selections are not implemented.
+    a.refuse(&[
+        "MODELE",
+        "CHAM_MATER",
+        "INST",
+        "LIST_INST",
+        "LIST_ORDRE",
+        "FREQ",
+        "LIST_FREQ",
+        "NUME_MODE",
+        "NOM_CAS",
+        "NOEUD_CMP",
+        "CARA_ELEM",
+        "EXCIT",
+    ])?;
+    let orders = a.ints("NUME_ORDRE");
+    for step in steps.iter_mut() {
+        if !orders.is_empty() && !orders.contains(&step.nume_ordre) {
+            continue;
+        }
+        let Some(Field::Node { values: depl, .. }) = step.fields.get("DEPL") else {
+            return Err(a.err("RESULTAT", format!("no DEPL at order {}", step.nume_ordre)));
+        };
+        let ns = md.nsig();
+        let (mut sig_elno, mut eps_elno) = (vec![None; mesh.cells.len()], vec![None; mesh.cells.len()]);
+        let (mut sig_elga, mut eps_elga) = (vec![None; mesh.cells.len()], vec![None; mesh.cells.len()]);
+        for &c in p.bulk.iter().filter(|c| only(c)) {
+            let ue: Vec<f64> =
+                mesh.cells[c].iter().flat_map(|&n| (0..md.dim()).map(move |k| depl[n * md.dim() + k])).collect();
+            let mat = &p.materials[c].as_ref().unwrap().0;
+            let xs = coords_of(mesh, c);
+            let (eps, sig) = elasticity::node_fields(md, mat, mesh.cell_types[c], &xs, &ue)
+                .map_err(|e| Error::runtime(e.to_string()))?;
+            sig_elno[c] = Some(sig.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
+            eps_elno[c] = Some(eps.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
+            let g = elasticity::gauss_fields(md, mat, mesh.cell_types[c], &xs, &ue)
+                .map_err(|e| Error::runtime(e.to_string()))?;
+            sig_elga[c] = Some(g.sig.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
+            eps_elga[c] = Some(g.eps.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
+        }
+        let siro = match wanted.iter().any(|o| o == "SIRO_ELEM") {
+            true => Some(siro_elem(&p, &model, depl, &only).map_err(|e| e.at(a.span))?),
+            false => None,
+        };
+        let sn: Vec<String> = md.sigma_names().iter().map(|s| s.to_string()).collect();
+        let en: Vec<String> = md.epsilon_names().iter().map(|s| s.to_string()).collect();
+        for o in &wanted {
+            let f = match o.as_str() {
+                "SIGM_ELNO" => Field::Elno { components: sn.clone(), cells: sig_elno.clone() },
+                "EPSI_ELNO" => Field::Elno { components: en.clone(), cells: eps_elno.clone() },
+                "SIGM_NOEU" => Field::Node { components: sn.clone(), values: to_nodes(mesh, &sig_elno, ns) },
+                "EPSI_NOEU" => Field::Node { components: en.clone(), values: to_nodes(mesh, &eps_elno, ns) },
+                // In linear elasticity the generalized and Cauchy stresses coincide.
+                "SIEF_ELGA" | "SIGM_ELGA" => Field::Elga { components: sn.clone(), cells: sig_elga.clone() },
+                "SIRO_ELEM" => siro.clone().expect("computed above"),
+                "SIEQ_ELNO" | "SIEQ_NOEU" => {
+                    let cells: Vec<Option<Vec<f64>>> = sig_elno
+                        .iter()
+                        .map(|c| c.as_ref().map(|v| v.chunks(ns).flat_map(equivalent_stresses).collect()))
+                        .collect();
+                    let names = SIEQ_COMPONENTS.iter().map(|s| s.to_string()).collect();
+                    if o == "SIEQ_ELNO" {
+                        Field::Elno { components: names, cells }
+                    } else {
+                        Field::Node { components: names, values: to_nodes(mesh, &cells, SIEQ_COMPONENTS.len()) }
+                    }
+                }
+                _ => Field::Elga { components: en.clone(), cells: eps_elga.clone() },
+            };
+            step.fields.insert(o.clone(), f);
+        }
+    }
+    let r = rc.result()?;
+    let data = ResultData { model: r.model.clone(), material: r.material.clone(), loads: r.loads.clone(), steps };
+    Ok(Some(ConceptData::Result(data)))
+}
+
+#[cfg(test)]
+mod sieq_tests {
+    use super::*;
+
+    #[test]
+    fn equivalent_stresses_of_known_tensors() {
+        // Uniaxial: VMIS = TRESCA = |s|, principal (0, 0, s).
+        let e = equivalent_stresses(&[0.0, 0.0, 7.0, 0.0, 0.0, 0.0]);
+        assert!((e[0] - 7.0).abs() < 1e-12 && (e[1] - 7.0).abs() < 1e-12);
+        assert!(e[2].abs() < 1e-12 && e[3].abs() < 1e-12 && (e[4] - 7.0).abs() < 1e-12);
+        // Pure shear xy = t: principal (-t, 0, t), VMIS = sqrt(3) t, TRESCA = 2t.
+        let e = equivalent_stresses(&[0.0, 0.0, 0.0, 2.0]);
+        assert!((e[0] - 2.0 * 3f64.sqrt()).abs() < 1e-12 && (e[1] - 4.0).abs() < 1e-12);
+        assert!((e[2] + 2.0).abs() < 1e-12 && e[3].abs() < 1e-12 && (e[4] - 2.0).abs() < 1e-12);
+        // Hydrostatic: VMIS 0, TRSIG = 3p.
+        let e = equivalent_stresses(&[-5.0, -5.0, -5.0, 0.0, 0.0, 0.0]);
+        assert!(e[0].abs() < 1e-12 && (e[6] + 15.0).abs() < 1e-12);
+        // A general tensor: principal values are the eigenvalues (their sum and product).
+        let s = [3.0, -1.0, 2.0, 0.5, -0.7, 1.1];
+        let p = principal(&s);
+        assert!((p[0] + p[1] + p[2] - 4.0).abs() < 1e-12);
+        let det = s[0] * (s[1] * s[2] - s[5] * s[5]) - s[3] * (s[3] * s[2] - s[5] * s[4])
+            + s[4] * (s[3] * s[5] - s[1] * s[4]);
+        assert!((p[0] * p[1] * p[2] - det).abs() < 1e-10);
+    }
+    #[test]
+    fn rosette_of_a_uniform_stress_on_a_vertical_segment() {
+        // σ = [[100, 50], [50, 200]], SIZZ = 7; segment from (1,0) to (1,1): t1 = ey, n = ex.
+        let r = rosette_2d(CellType::Seg2, &[[1.0, 0.0, 0.0], [1.0, 1.0, 0.0]], [100.0, 200.0, 7.0, 50.0]).unwrap();
+        let want = [100.0, 50.0, 0.0, 100.0, 50.0, 200.0, 0.0, 50.0, 200.0, 0.0, 200.0, 0.0, 0.0, 7.0, 7.0, 50.0];
+        for (k, (g, w)) in r.iter().zip(want).enumerate() {
+            assert!((g - w).abs() < 1e-12, "{}: {g} != {w}", SIRO_COMPONENTS[k]);
+        }
+        // Reversed segment: n = -ey... here t1 = -ey, n = -ex; σ·n and σ·t1 change sign, the
+        // normal and tangential stresses and the shear t1·σ·n do not.
+        let r = rosette_2d(CellType::Seg2, &[[1.0, 1.0, 0.0], [1.0, 0.0, 0.0]], [100.0, 200.0, 7.0, 50.0]).unwrap();
+        assert_eq!((r[0], r[1], r[3], r[4], r[10], r[15]), (-100.0, -50.0, 100.0, -50.0, 200.0, 50.0));
+    }
+
+    #[test]
+    fn rosette_of_a_top_edge_run_backwards() {
+        // The top edge of a square run counterclockwise: from (1,1) to (0,1): t1 = -ex, n = ey.
+        let r = rosette_2d(CellType::Seg2, &[[1.0, 1.0, 0.0], [0.0, 1.0, 0.0]], [100.0, 200.0, 0.0, 50.0]).unwrap();
+        assert_eq!(&r[..4], &[50.0, 200.0, 0.0, 200.0]);
+        assert_eq!((r[4], r[5], r[10], r[15]), (-100.0, -50.0, 100.0, -50.0));
+        assert!(rosette_2d(CellType::Seg2, &[[1.0, 1.0, 0.0], [1.0, 1.0, 0.0]], [0.0; 4]).is_none());
+    }
+}

@@ -1,0 +1,238 @@
+//! AFFE_CHAR_MECA and AFFE_CHAR_MECA_F: mechanical loads on a model, mesh entities resolved and checked.
+
+use crate::catalog::args::{Args, Val};
+use crate::concepts::model::{Load, LoadItem, LoadValue};
+use crate::concepts::{ConceptData, ConceptRef};
+use crate::diag::Result;
+use crate::mesh::Mesh;
+use crate::stages::select::{select_cells, select_nodes};
+use crate::stages::Ctx;
+use std::collections::HashMap;
+
+use crate::fem::geometry;
+// ------------------------------------------------------------------ AFFE_CHAR_MECA(_F)
+
+/// Load keywords we implement; any other factor keyword given is refused.
+const LOAD_KEYWORDS: &[&str] =
+    &["DDL_IMPO", "FACE_IMPO", "FORCE_NODALE", "FORCE_CONTOUR", "FORCE_FACE", "PRES_REP", "PESANTEUR", "LIAISON_DDL"];
+const PLAIN_KEYWORDS: &[&str] = &["MODELE", "INFO", "VERI_AFFE", "VERI_NORM", "DOUBLE_LAGRANGE", "CHAM_MATER"];
+/// Keywords of DDL_IMPO / FORCE_* that select entities rather than give values.
+const SELECTORS: &[&str] = &["TOUT", "NOEUD", "GROUP_NO", "GROUP_MA", "MAILLE", "SANS_GROUP_MA", "SANS_GROUP_NO"];
+
+fn load_value(v: &Val) -> Option<LoadValue> {
+    match v {
+        Val::R(r) => Some(LoadValue::Real(*r)),
+        Val::I(i) => Some(LoadValue::Real(*i as f64)),
+        Val::Concept(c) => Some(LoadValue::Func(c.clone())),
+        _ => None,
+    }
+}
+
+/// The (component, value) pairs written in an occurrence, in schema order.
+fn components(occ: &Args, skip: &[&str]) -> Vec<(String, LoadValue)> {
+    occ.items
+        .iter()
+        .filter(|i| !SELECTORS.contains(&i.name.as_str()) && !skip.contains(&i.name.as_str()) && !i.defaulted)
+        .filter_map(|i| occ.val(&i.name).and_then(load_value).map(|v| (i.name.clone(), v)))
+        .collect()
+}
+
+fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
+    for item in &a.items {
+        let n = item.name.as_str();
+        if !item.defaulted && !LOAD_KEYWORDS.contains(&n) && !PLAIN_KEYWORDS.contains(&n) {
+            return Err(a.err(n, "not supported yet"));
+        }
+    }
+    let mo = a.req_concept("MODELE")?;
+    let (mesh, name) = {
+        let m = mo.model()?;
+        (m.current_mesh(), m.mesh_concept.label())
+    };
+    let mut items = Vec::new();
+    for occ in a.facts("DDL_IMPO") {
+        for k in ["BLOCAGE", "LIAISON"] {
+            if occ.given(k) {
+                return Err(occ.err(k, "not supported yet"));
+            }
+        }
+        let comps = components(occ, &[]);
+        if comps.is_empty() {
+            return Err(occ.err("DDL_IMPO", "no component is prescribed"));
+        }
+        for node in select_nodes(&mesh, occ, &name)? {
+            for (c, v) in &comps {
+                items.push(LoadItem::Dof { node, component: c.clone(), value: v.clone() });
+            }
+        }
+    }
+    for occ in a.facts("FACE_IMPO") {
+        items.extend(face_impo(&mesh, occ, &name, mo_dim(&mo)?, functional)?);
+    }
+    for occ in a.facts("FORCE_NODALE") {
+        let comps = components(occ, &[]);
+        for node in select_nodes(&mesh, occ, &name)? {
+            for (c, v) in &comps {
+                items.push(LoadItem::NodalForce { node, component: c.clone(), value: v.clone() });
+            }
+        }
+    }
+    for kw in ["FORCE_CONTOUR", "FORCE_FACE"] {
+        for occ in a.facts(kw) {
+            let cells = select_cells(&mesh, occ, &name)?;
+            let comps = components(occ, &[]);
+            if comps.iter().any(|(c, _)| !matches!(c.as_str(), "FX" | "FY" | "FZ")) {
+                let bad: Vec<&str> =
+                    comps.iter().map(|(c, _)| c.as_str()).filter(|c| !matches!(*c, "FX" | "FY" | "FZ")).collect();
+                return Err(occ.err(bad[0], "not supported yet"));
+            }
+            items.push(LoadItem::SurfaceForce { cells, components: comps });
+        }
+    }
+    for occ in a.facts("PRES_REP") {
+        for k in ["FISSURE", "CISA_2D"] {
+            if occ.given(k) {
+                return Err(occ.err(k, "not supported yet"));
+            }
+        }
+        let cells = select_cells(&mesh, occ, &name)?;
+        let value = occ.val("PRES").and_then(load_value).ok_or_else(|| occ.err("PRES", "PRES is required"))?;
+        items.push(LoadItem::Pressure { cells, value });
+    }
+    if let Some(occ) = a.fact("PESANTEUR") {
+        let d = occ.reals("DIRECTION");
+        let cells = if occ.has("GROUP_MA") { Some(select_cells(&mesh, occ, &name)?) } else { None };
+        items.push(LoadItem::Gravity { g: occ.req_real("GRAVITE")?, direction: [d[0], d[1], d[2]], cells });
+    }
+    for occ in a.facts("LIAISON_DDL") {
+        let mut nodes = Vec::new();
+        let index: HashMap<&str, usize> = mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+        for n in occ.texts("NOEUD") {
+            nodes.push(
+                *index.get(n.as_str()).ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {name}")))?,
+            );
+        }
+        for g in occ.texts("GROUP_NO") {
+            let m = mesh
+                .node_groups
+                .get(&g)
+                .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {name}")))?;
+            if m.len() != 1 {
+                return Err(occ.err(
+                    "GROUP_NO",
+                    format!("group '{g}' holds {} nodes; LIAISON_DDL needs one node per group", m.len()),
+                ));
+            }
+            nodes.push(m[0]);
+        }
+        let ddl = occ.texts("DDL");
+        let coef = occ.reals("COEF_MULT");
+        if nodes.len() != ddl.len() || ddl.len() != coef.len() {
+            return Err(occ.err(
+                "COEF_MULT",
+                format!("{} nodes, {} DDL and {} COEF_MULT: they must match", nodes.len(), ddl.len(), coef.len()),
+            ));
+        }
+        let value =
+            occ.val("COEF_IMPO").and_then(load_value).ok_or_else(|| occ.err("COEF_IMPO", "COEF_IMPO is required"))?;
+        let terms = nodes.into_iter().zip(ddl).zip(coef).map(|((n, d), c)| (n, d, c)).collect();
+        items.push(LoadItem::Relation { terms, value });
+    }
+    Ok(Some(ConceptData::Load(Load { model: mo, items, functional })))
+}
+
+fn mo_dim(mo: &ConceptRef) -> Result<usize> {
+    Ok(mo.model()?.dim())
+}
+
+/// FACE_IMPO: DX / DY / DZ on the nodes of the cells (less those of
+/// SANS_GROUP_MA and SANS_GROUP_NO), or DNOR: at each of those nodes
+/// `u · n = value`, with `n` the mean of the unit normals of the cells at the
+/// node (Code_Aster's `canort`), each cell's normal turned out of the cell
+/// it bounds where there is one on a single side.
+fn face_impo(mesh: &Mesh, occ: &Args, name: &str, dim: usize, functional: bool) -> Result<Vec<LoadItem>> {
+    for k in ["DRX", "DRY", "DRZ", "DRNOR", "DTAN", "GRX", "PRES", "PHI", "TEMP", "PRE1", "PRE2"] {
+        if occ.given(k) {
+            return Err(occ.err(k, "not supported yet"));
+        }
+    }
+    let mut cells = Vec::new();
+    for g in occ.texts("GROUP_MA") {
+        let members = mesh
+            .cell_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("GROUP_MA", format!("group of cells '{g}' is not in mesh {name}")))?;
+        cells.extend(members.iter().copied());
+    }
+    cells.sort_unstable();
+    cells.dedup();
+    let mut excluded: std::collections::HashSet<usize> = std::collections::HashSet::new();
+    for g in occ.texts("SANS_GROUP_MA") {
+        let members = mesh
+            .cell_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("SANS_GROUP_MA", format!("group of cells '{g}' is not in mesh {name}")))?;
+        excluded.extend(members.iter().flat_map(|&c| mesh.cells[c].iter().copied()));
+    }
+    for g in occ.texts("SANS_GROUP_NO") {
+        let members = mesh
+            .node_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("SANS_GROUP_NO", format!("group of nodes '{g}' is not in mesh {name}")))?;
+        excluded.extend(members.iter().copied());
+    }
+    let mut nodes: Vec<usize> = cells.iter().flat_map(|&c| mesh.cells[c].iter().copied()).collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    nodes.retain(|n| !excluded.contains(n));
+    let mut items = Vec::new();
+    if occ.given("DNOR") {
+        let value = occ.val("DNOR").and_then(load_value).ok_or_else(|| occ.err("DNOR", "a value is required"))?;
+        if functional || matches!(value, LoadValue::Func(_)) {
+            return Err(occ.err("DNOR", "DNOR given by a function is not supported yet"));
+        }
+        let node_cells = geometry::node_to_cells(mesh);
+        let mut signs = Vec::with_capacity(cells.len());
+        for &c in &cells {
+            let t = mesh.cell_types[c];
+            if !geometry::is_skin_type(t) || t.dim() + 1 != dim {
+                return Err(occ.err(
+                    "GROUP_MA",
+                    format!(
+                        "DNOR: cell {} is a {}; the normal is taken on {} of a {dim}D model",
+                        mesh.cell_names[c],
+                        t.name(),
+                        if dim == 2 { "segments (SEG2, SEG3)" } else { "faces (TRIA3/6, QUAD4/8/9)" }
+                    ),
+                ));
+            }
+            signs.push(geometry::outward_sign(mesh, &node_cells, c).unwrap_or(1.0));
+        }
+        let normals = geometry::averaged_node_normals(mesh, &cells, &signs).map_err(|e| occ.err("GROUP_MA", e))?;
+        for node in nodes {
+            let n = normals[&node];
+            let terms =
+                ["DX", "DY", "DZ"][..dim].iter().enumerate().map(|(k, c)| (node, c.to_string(), n[k])).collect();
+            items.push(LoadItem::Relation { terms, value: value.clone() });
+        }
+        return Ok(items);
+    }
+    let comps = components(occ, &[]);
+    if comps.is_empty() {
+        return Err(occ.err("GROUP_MA", "no component is prescribed"));
+    }
+    for node in nodes {
+        for (c, v) in &comps {
+            items.push(LoadItem::Dof { node, component: c.clone(), value: v.clone() });
+        }
+    }
+    Ok(items)
+}
+
+pub fn affe_char_meca(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    affe_char(a, false)
+}
+
+pub fn affe_char_meca_f(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    affe_char(a, true)
+}

@@ -1,0 +1,174 @@
+//! POST_RELEVE_T (EXTRACTION): values of results and fields as a table.
+
+use crate::catalog::args::Args;
+use crate::concepts::result::{Field, Step};
+use crate::concepts::ConceptData;
+use crate::diag::Result;
+use crate::stages::Ctx;
+
+use crate::concepts::table::{Cell, ColType, Table};
+// ------------------------------------------------------------------ POST_RELEVE_T
+
+pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    let mut t = Table::default();
+    let mut rows: Vec<Vec<(String, Cell)>> = Vec::new();
+    for occ in a.facts("ACTION") {
+        let ops = occ.texts("OPERATION");
+        if ops.iter().any(|o| o != "EXTRACTION") {
+            return Err(occ.err("OPERATION", format!("OPERATION='{}' is not supported yet", ops.join("', '"))));
+        }
+        occ.refuse(&[
+            "CHAM_GD",
+            "INVARIANT",
+            "ELEM_PRINCIPAUX",
+            "RESULTANTE",
+            "MOMENT",
+            "POINT",
+            "REPERE",
+            "LIST_ORDRE",
+            "LIST_INST",
+            "FREQ",
+            "NUME_MODE",
+            "LIST_FREQ",
+            "LIST_MODE",
+            "NOEUD_CMP",
+            "NOM_CAS",
+            "TRAC_NOR",
+            "TRAC_DIR",
+            "DIRECTION",
+        ])?;
+        if occ.text("CRITERE") == Some("ABSOLU") {
+            return Err(occ.err("CRITERE", "CRITERE='ABSOLU' for the time search is not supported yet"));
+        }
+        let intitule = occ.req_text("INTITULE")?.to_string();
+        let rc = occ.req_concept("RESULTAT")?;
+        let name = rc.label();
+        let r = rc.result()?;
+        let mesh = r.model.model()?.current_mesh();
+        let mesh_name = r.model.model()?.mesh_concept.label();
+        let cham = occ.req_text("NOM_CHAM")?.to_string();
+        let steps: Vec<&Step> = if occ.has("NUME_ORDRE") {
+            occ.ints("NUME_ORDRE")
+                .iter()
+                .map(|n| {
+                    r.by_order(*n)
+                        .ok_or_else(|| occ.err("NUME_ORDRE", format!("result {name} has no order number {n}")))
+                })
+                .collect::<Result<_>>()?
+        } else if occ.has("INST") {
+            let prec = occ.real("PRECISION").unwrap_or(1e-6);
+            occ.reals("INST")
+                .iter()
+                .map(|t| {
+                    r.by_inst(*t, prec).ok_or_else(|| occ.err("INST", format!("result {name} has no step at time {t}")))
+                })
+                .collect::<Result<_>>()?
+        } else {
+            r.steps.iter().collect()
+        };
+        let nodes = crate::stages::select::select_nodes(&mesh, occ, &mesh_name)?;
+        let cells_sel = if occ.has("GROUP_MA") || occ.has("MAILLE") || occ.has("TOUT") {
+            Some(crate::stages::select::select_cells(&mesh, occ, &mesh_name)?)
+        } else {
+            None
+        };
+        for step in steps {
+            let field = step.fields.get(&cham).ok_or_else(|| {
+                occ.err("NOM_CHAM", format!("result {name} has no field {cham} at order {}", step.nume_ordre))
+            })?;
+            let comps: Vec<String> =
+                if occ.text("TOUT_CMP") == Some("OUI") { field.components().to_vec() } else { occ.texts("NOM_CMP") };
+            let ks: Vec<usize> = comps
+                .iter()
+                .map(|c| {
+                    field.component(c).ok_or_else(|| occ.err("NOM_CMP", format!("field {cham} has no component {c}")))
+                })
+                .collect::<Result<_>>()?;
+            let n = field.components().len();
+            let head = |node: usize, cell: Option<usize>| {
+                let mut row = vec![
+                    ("INTITULE".to_string(), Cell::Text(intitule.clone())),
+                    ("RESU".to_string(), Cell::Text(name.clone())),
+                    ("NOM_CHAM".to_string(), Cell::Text(cham.clone())),
+                    ("NUME_ORDRE".to_string(), Cell::Int(step.nume_ordre)),
+                    ("INST".to_string(), Cell::Real(step.inst)),
+                ];
+                if let Some(c) = cell {
+                    row.push(("MAILLE".to_string(), Cell::Text(mesh.cell_names[c].clone())));
+                }
+                // Code_Aster shows node numbers for meshes whose file gave no node names.
+                let label = if mesh.named_nodes { mesh.node_names[node].clone() } else { (node + 1).to_string() };
+                row.push(("NOEUD".to_string(), Cell::Text(label)));
+                let xyz = ["COOR_X", "COOR_Y", "COOR_Z"];
+                for (d, name) in xyz.iter().enumerate().take(mesh.dim.max(2)) {
+                    row.push((name.to_string(), Cell::Real(mesh.coords[node][d])));
+                }
+                row
+            };
+            match field {
+                Field::Node { values, .. } => {
+                    for &node in &nodes {
+                        let mut row = head(node, None);
+                        for (c, &k) in comps.iter().zip(&ks) {
+                            let v = values[node * n + k];
+                            row.push((c.clone(), if v.is_nan() { Cell::Empty } else { Cell::Real(v) }));
+                        }
+                        rows.push(row);
+                    }
+                }
+                Field::Elno { cells, .. } => {
+                    let cell_list: Vec<usize> = match &cells_sel {
+                        Some(c) => c.clone(),
+                        None => {
+                            (0..mesh.cells.len()).filter(|&c| mesh.cells[c].iter().any(|x| nodes.contains(x))).collect()
+                        }
+                    };
+                    for c in cell_list {
+                        let Some(vals) = &cells[c] else { continue };
+                        for (i, &node) in mesh.cells[c].iter().enumerate() {
+                            if !nodes.contains(&node) {
+                                continue;
+                            }
+                            let mut row = head(node, Some(c));
+                            for (cn, &k) in comps.iter().zip(&ks) {
+                                row.push((cn.clone(), Cell::Real(vals[i * n + k])));
+                            }
+                            rows.push(row);
+                        }
+                    }
+                }
+                _ => {
+                    return Err(occ.err(
+                        "NOM_CHAM",
+                        format!("extraction of {cham} (a field at Gauss points or per cell) is not supported yet"),
+                    ))
+                }
+            }
+        }
+    }
+    // Columns in order of first appearance.
+    let mut names: Vec<String> = Vec::new();
+    for r in &rows {
+        for (n, _) in r {
+            if !names.contains(n) {
+                names.push(n.clone());
+            }
+        }
+    }
+    for n in &names {
+        let cells: Vec<Cell> = rows
+            .iter()
+            .map(|r| r.iter().find(|(k, _)| k == n).map(|(_, c)| c.clone()).unwrap_or(Cell::Empty))
+            .collect();
+        let ty = match cells.iter().find(|c| !c.is_empty()) {
+            Some(Cell::Int(_)) => ColType::I,
+            Some(Cell::Text(_)) => ColType::K(16),
+            _ => ColType::R,
+        };
+        t.add_column(n, ty, cells)?;
+    }
+    if a.has("TITRE") {
+        t.title = a.texts("TITRE").join("\n");
+    }
+    Ok(Some(ConceptData::Table(t)))
+}

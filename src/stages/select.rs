@@ -1,0 +1,197 @@
+//! Selections shared by the stages: mesh entities of an occurrence (TOUT, GROUP_MA, MAILLE, GROUP_NO,
+//! NOEUD and their SANS_ forms).
+
+use crate::catalog::args::Args;
+use crate::concepts::table::{Cell, Table};
+use crate::diag::Result;
+use crate::mesh::Mesh;
+use std::collections::HashMap;
+
+pub fn select_cells(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
+    let mut cells: Vec<usize> = Vec::new();
+    if occ.text("TOUT") == Some("OUI") {
+        cells.extend(0..mesh.cells.len());
+    }
+    for g in occ.texts("GROUP_MA") {
+        let members = mesh
+            .cell_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("GROUP_MA", format!("group of cells '{g}' is not in mesh {mesh_name}")))?;
+        cells.extend(members.iter().copied());
+    }
+    let names = occ.texts("MAILLE");
+    if !names.is_empty() {
+        let index: HashMap<&str, usize> = mesh.cell_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+        for n in names {
+            cells.push(
+                *index
+                    .get(n.as_str())
+                    .ok_or_else(|| occ.err("MAILLE", format!("cell '{n}' is not in mesh {mesh_name}")))?,
+            );
+        }
+    }
+    for g in occ.texts("SANS_GROUP_MA") {
+        let members = mesh
+            .cell_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("SANS_GROUP_MA", format!("group of cells '{g}' is not in mesh {mesh_name}")))?;
+        cells.retain(|c| !members.contains(c));
+    }
+    cells.sort_unstable();
+    cells.dedup();
+    Ok(cells)
+}
+
+/// Nodes selected by TOUT / GROUP_MA / MAILLE / GROUP_NO / NOEUD (and SANS_GROUP_NO).
+pub fn select_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
+    let mut nodes: Vec<usize> = Vec::new();
+    if occ.has("TOUT") || occ.has("GROUP_MA") || occ.has("MAILLE") {
+        for c in select_cells(mesh, occ, mesh_name)? {
+            nodes.extend(mesh.cells[c].iter().copied());
+        }
+    }
+    for g in occ.texts("GROUP_NO") {
+        let members = mesh
+            .node_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {mesh_name}")))?;
+        nodes.extend(members.iter().copied());
+    }
+    let names = occ.texts("NOEUD");
+    if !names.is_empty() {
+        let index: HashMap<&str, usize> = mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+        for n in names {
+            nodes.push(
+                *index
+                    .get(n.as_str())
+                    .ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {mesh_name}")))?,
+            );
+        }
+    }
+    for g in occ.texts("SANS_GROUP_NO") {
+        let members = mesh
+            .node_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("SANS_GROUP_NO", format!("group of nodes '{g}' is not in mesh {mesh_name}")))?;
+        nodes.retain(|n| !members.contains(n));
+    }
+    nodes.sort_unstable();
+    nodes.dedup();
+    Ok(nodes)
+}
+
+// ------------------------------------------------------------------ table rows (FILTRE)
+
+fn matches_eq(cell: &Cell, occ: &Args) -> Result<bool> {
+    let crit = occ.text("CRITERE").unwrap_or("RELATIF");
+    let prec = occ.real("PRECISION").unwrap_or(1e-3);
+    if occ.has("VALE_K") {
+        let Cell::Text(t) = cell else { return Ok(false) };
+        return Ok(occ.texts("VALE_K").iter().any(|k| k.trim_end() == t.trim_end()));
+    }
+    if occ.has("VALE_I") {
+        return Ok(match cell {
+            Cell::Int(i) => occ.ints("VALE_I").contains(i),
+            Cell::Real(r) => occ.ints("VALE_I").iter().any(|i| *i as f64 == *r),
+            _ => false,
+        });
+    }
+    if occ.has("VALE") {
+        let Some(x) = cell.as_f64() else { return Ok(false) };
+        return Ok(occ.reals("VALE").iter().any(|&v| {
+            if crit == "ABSOLU" {
+                (x - v).abs() <= prec
+            } else {
+                let (a, b) = (v * (1.0 - prec), v * (1.0 + prec));
+                a.min(b) <= x && x <= a.max(b)
+            }
+        }));
+    }
+    if occ.has("VALE_C") {
+        return Err(occ.err("VALE_C", "filters on complex values are not supported yet"));
+    }
+    Err(occ.err("CRIT_COMP", "this comparison needs VALE, VALE_I or VALE_K"))
+}
+
+fn ordering(cell: &Cell, occ: &Args) -> Result<Option<std::cmp::Ordering>> {
+    let refv = if let Some(v) = occ.real("VALE") {
+        Cell::Real(v)
+    } else if let Some(i) = occ.ints("VALE_I").first() {
+        Cell::Int(*i)
+    } else if let Some(k) = occ.text("VALE_K") {
+        Cell::Text(k.to_string())
+    } else {
+        return Err(occ.err("CRIT_COMP", "this comparison needs VALE, VALE_I or VALE_K"));
+    };
+    Ok(match (cell, &refv) {
+        (Cell::Text(a), Cell::Text(b)) => Some(a.as_str().cmp(b.as_str())),
+        (a, b) => match (a.as_f64(), b.as_f64()) {
+            (Some(x), Some(y)) => x.partial_cmp(&y),
+            _ => None,
+        },
+    })
+}
+
+/// The rows of `t` kept by one filter occurrence (NOM_PARA, CRIT_COMP, VALE*).
+pub fn filter_rows(t: &Table, rows: &[usize], occ: &Args, table: &str) -> Result<Vec<usize>> {
+    let para = occ.req_text("NOM_PARA")?;
+    let col = t.column(para).ok_or_else(|| {
+        let names: Vec<&str> = t.columns.iter().map(|c| c.name.as_str()).collect();
+        occ.err("NOM_PARA", format!("table {table} has no parameter '{para}' (parameters: {})", names.join(", ")))
+    })?;
+    let cells = &t.columns[col].cells;
+    let crit = occ.text("CRIT_COMP").unwrap_or("EQ");
+    use std::cmp::Ordering::*;
+    let mut out = Vec::new();
+    match crit {
+        "MAXI" | "MINI" | "MAXI_ABS" | "MINI_ABS" => {
+            let key = |r: usize| cells[r].as_f64().map(|x| if crit.ends_with("_ABS") { x.abs() } else { x });
+            let best = rows.iter().filter_map(|&r| key(r)).fold(None, |acc: Option<f64>, x| {
+                Some(match acc {
+                    None => x,
+                    Some(a) if crit.starts_with("MAXI") => a.max(x),
+                    Some(a) => a.min(x),
+                })
+            });
+            if let Some(b) = best {
+                out.extend(rows.iter().copied().filter(|&r| key(r) == Some(b)));
+            }
+        }
+        "REGEXP" => {
+            let pat = occ.text("VALE_K").ok_or_else(|| occ.err("CRIT_COMP", "REGEXP needs VALE_K"))?;
+            let re =
+                regex::Regex::new(pat).map_err(|e| occ.err("VALE_K", format!("invalid regular expression: {e}")))?;
+            out.extend(rows.iter().copied().filter(|&r| matches!(&cells[r], Cell::Text(t) if re.is_match(t))));
+        }
+        _ => {
+            for &r in rows {
+                let c = &cells[r];
+                let keep = match crit {
+                    "VIDE" => c.is_empty(),
+                    "NON_VIDE" => !c.is_empty(),
+                    _ if c.is_empty() => false,
+                    "EQ" => matches_eq(c, occ)?,
+                    "NE" => !matches_eq(c, occ)?,
+                    "GT" => ordering(c, occ)? == Some(Greater),
+                    "LT" => ordering(c, occ)? == Some(Less),
+                    "GE" => matches!(ordering(c, occ)?, Some(Greater | Equal)),
+                    "LE" => matches!(ordering(c, occ)?, Some(Less | Equal)),
+                    other => return Err(occ.err("CRIT_COMP", format!("'{other}' is not supported"))),
+                };
+                if keep {
+                    out.push(r);
+                }
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// Apply all occurrences of FILTRE in turn.
+pub fn filtered(t: &Table, filters: &[Args], table: &str) -> Result<Vec<usize>> {
+    let mut rows: Vec<usize> = (0..t.nrows()).collect();
+    for f in filters {
+        rows = filter_rows(t, &rows, f, table)?;
+    }
+    Ok(rows)
+}
