@@ -1,4 +1,5 @@
-//! AFFE_CHAR_MECA and AFFE_CHAR_MECA_F: mechanical loads on a model, mesh entities resolved and checked.
+//! AFFE_CHAR_MECA and AFFE_CHAR_MECA_F: mechanical loads on a model, mesh entities resolved and checked;
+//! DEFI_CONTACT: the cohesive zones of an X-FEM model.
 
 use crate::catalog::args::{Args, Val};
 use crate::concepts::model::{Load, LoadItem, LoadValue};
@@ -7,7 +8,9 @@ use crate::diag::Result;
 use crate::mesh::Mesh;
 use crate::stages::select::{select_cells, select_nodes};
 use crate::stages::Ctx;
+use crate::xfem::model::ContactKind;
 use std::collections::HashMap;
+use std::rc::Rc;
 
 use crate::fem::geometry;
 // ------------------------------------------------------------------ AFFE_CHAR_MECA(_F)
@@ -235,4 +238,86 @@ pub fn affe_char_meca(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 
 pub fn affe_char_meca_f(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     affe_char(a, true)
+}
+
+// ------------------------------------------------------------------ DEFI_CONTACT
+
+/// DEFI_CONTACT FORMULATION='XFEM' with cohesive zones (ALGO_CONT='CZM',
+/// RELATION='CZM_LIN_MIX', ALGO_LAGR='VERSION2', INTEGRATION='GAUSS') on an
+/// X-FEM model with CONTACT='MORTAR'. Every other formulation or option
+/// stops by name.
+pub fn defi_contact(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    let form = a.text("FORMULATION").unwrap_or("DISCRETE");
+    if form != "XFEM" {
+        return Err(a.err("FORMULATION", format!("FORMULATION='{form}' is not supported yet (only 'XFEM')")));
+    }
+    if a.text("FROTTEMENT").is_some_and(|f| f != "SANS") {
+        return Err(a.err("FROTTEMENT", "friction is not supported yet"));
+    }
+    for kw in ["REAC_GEOM", "ELIM_ARETE", "ITER_CONT_TYPE"] {
+        let given = a.items.iter().any(|i| i.name == kw && !i.defaulted);
+        if given {
+            let ok = match kw {
+                "REAC_GEOM" => a.text(kw) == Some("SANS"),
+                "ELIM_ARETE" => a.text(kw) == Some("DUAL"),
+                _ => a.text(kw) == Some("MAXI"),
+            };
+            if !ok {
+                return Err(a.err(kw, "not supported yet with the cohesive X-FEM zones"));
+            }
+        }
+    }
+    let mo = a.req_concept("MODELE")?;
+    let cracks = {
+        let m = mo.model()?;
+        let Some(xm) = &m.xfem else {
+            return Err(a.err("MODELE", format!("{} is not an X-FEM model (MODI_MODELE_XFEM)", mo.label())));
+        };
+        if xm.contact != ContactKind::Mortar {
+            return Err(a.err(
+                "MODELE",
+                format!(
+                    "{}: CONTACT='{}' in MODI_MODELE_XFEM; the cohesive zones need CONTACT='MORTAR'",
+                    mo.label(),
+                    xm.contact.name()
+                ),
+            ));
+        }
+        xm.cracks.clone()
+    };
+    let mut zones = Vec::new();
+    for occ in a.facts("ZONE") {
+        let algo = occ.text("ALGO_CONT").unwrap_or("STANDARD");
+        if algo != "CZM" {
+            return Err(occ.err("ALGO_CONT", format!("ALGO_CONT='{algo}' is not supported yet (only 'CZM')")));
+        }
+        let rel = occ.req_text("RELATION")?;
+        if rel != "CZM_LIN_MIX" {
+            return Err(occ.err("RELATION", format!("RELATION='{rel}' is not supported yet (only 'CZM_LIN_MIX')")));
+        }
+        let lagr = occ.text("ALGO_LAGR").unwrap_or("AUTO");
+        if !matches!(lagr, "VERSION2" | "AUTO") {
+            return Err(occ.err("ALGO_LAGR", format!("ALGO_LAGR='{lagr}' is not supported yet (only 'VERSION2')")));
+        }
+        let integ = occ.text("INTEGRATION").unwrap_or("GAUSS");
+        if integ != "GAUSS" {
+            return Err(occ.err("INTEGRATION", format!("INTEGRATION='{integ}' is not supported yet (only 'GAUSS')")));
+        }
+        if occ.items.iter().any(|i| i.name == "TOLE_PROJ_EXT" && !i.defaulted) {
+            return Err(occ.err("TOLE_PROJ_EXT", "not supported yet"));
+        }
+        let fc = occ.req_concept("FISS_MAIT")?;
+        let crack = fc.crack().map_err(|e| occ.locate(e, "FISS_MAIT"))?;
+        if !cracks.iter().any(|k| Rc::ptr_eq(k, &crack)) {
+            return Err(occ.err("FISS_MAIT", format!("{} is not a crack of model {}", fc.label(), mo.label())));
+        }
+        zones.push(crate::concepts::model::ContactZone {
+            crack,
+            crack_name: fc.label(),
+            order: occ.int("ORDRE_INT").unwrap_or(6),
+            relation: rel.to_string(),
+        });
+    }
+    let iter_cont_maxi = a.int("ITER_CONT_MAXI").unwrap_or(30);
+    Ok(Some(ConceptData::Contact(crate::concepts::model::Contact { model: mo, zones, iter_cont_maxi })))
 }

@@ -114,7 +114,7 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "MODI_REPERE" => fields::modi_repere,
         "DEFI_FISS_XFEM" => xfem::defi_fiss_xfem,
         "MODI_MODELE_XFEM" => xfem::modi_modele_xfem,
-        "DEFI_CONTACT" => xfem::defi_contact,
+        "DEFI_CONTACT" => loads::defi_contact,
         "POST_MAIL_XFEM" => xfem::post_mail_xfem,
         "POST_CHAM_XFEM" => xfem::post_cham_xfem,
         _ => return None,

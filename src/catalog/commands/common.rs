@@ -1,7 +1,9 @@
 //! Pieces several command schemas share.
 
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptKind;
+use crate::diag::{Error, Result};
 use crate::kws;
 
 /// A function of one or more variables: tabulated, nappe or formula.
@@ -24,4 +26,21 @@ pub fn crit_prec() -> Vec<Entry> {
 pub fn with(mut v: Vec<Entry>, more: Vec<Entry>) -> Vec<Entry> {
     v.extend(more);
     v
+}
+
+/// A field concept of any location.
+pub const CHAM_GD: &[ConceptKind] = &[ConceptKind::ChamNo, ConceptKind::ChamElem, ConceptKind::Carte];
+
+/// The type of the result named by keyword `kw`.
+pub fn concept_kind(a: &Args, kw: &str) -> Option<ConceptKind> {
+    a.concept(kw).map(|c| c.kind())
+}
+
+pub fn missing(a: &Args, what: &str) -> Error {
+    Error::catalog(format!("cannot tell the type of the result: {what} is missing")).at(a.span)
+}
+
+/// CALC_CHAMP, POST_CHAM_XFEM: the result has the type of RESULTAT.
+pub fn type_of_resultat(a: &Args) -> Result<ConceptKind> {
+    concept_kind(a, "RESULTAT").ok_or_else(|| missing(a, "RESULTAT"))
 }

@@ -4,15 +4,16 @@ use super::schema::Command;
 
 mod common;
 mod control;
+mod fields;
 mod functions;
 mod loads;
 mod material;
 mod mesh;
 mod model;
 mod post;
+mod print;
 mod solve;
 mod tables;
-mod test_resu;
 mod tests;
 mod xfem;
 
@@ -22,13 +23,14 @@ pub fn all() -> Vec<Command> {
     v.extend(functions::commands());
     v.extend(tables::commands());
     v.extend(tests::commands());
-    v.extend(test_resu::commands());
     v.extend(mesh::commands());
     v.extend(model::commands());
     v.extend(material::commands());
     v.extend(loads::commands());
     v.extend(xfem::commands());
     v.extend(solve::commands());
+    v.extend(fields::commands());
     v.extend(post::commands());
+    v.extend(print::commands());
     v
 }

@@ -5,7 +5,7 @@ use crate::concepts::ConceptKind;
 use crate::kws;
 
 pub fn commands() -> Vec<Command> {
-    vec![defi_fiss_xfem(), modi_modele_xfem()]
+    vec![defi_fiss_xfem(), modi_modele_xfem(), post_mail_xfem(), post_cham_xfem()]
 }
 
 /// A level-set function.
@@ -128,4 +128,31 @@ fn modi_modele_xfem() -> Command {
             simp("DECOUPE_FACETTE").txt().d("DEFAUT").one_of(&["DEFAUT", "SOUS_ELEMENTS"]),
         ])
         .rules(vec![un_parmi(&["FISSURE", "MODELE_THER"])])
+}
+
+// ------------------------------------------------------------------ POST_MAIL_XFEM, POST_CHAM_XFEM
+
+fn post_mail_xfem() -> Command {
+    Command::new("POST_MAIL_XFEM", "Build a mesh conforming to the XFEM cracks, for visualisation.")
+        .produces(ConceptKind::Maillage)
+        .kw(kws![
+            simp("MODELE").co(&[ConceptKind::Modele]).o(),
+            simp("PREF_NOEUD_X").txt().d("NX"),
+            simp("PREF_NOEUD_M").txt().d("NM"),
+            simp("PREF_NOEUD_P").txt().d("NP"),
+            simp("PREF_MAILLE_X").txt().d("MX"),
+            simp("PREF_GROUP_CO").txt().d("NFISSU"),
+            simp("TITRE").txt(),
+            simp("INFO").i().d(1).one_of_i(&[1, 2]),
+        ])
+}
+
+fn post_cham_xfem() -> Command {
+    Command::new("POST_CHAM_XFEM", "Transfer the fields of an XFEM result to the visualisation mesh.")
+        .produces_dyn(super::common::type_of_resultat)
+        .kw(kws![
+            simp("RESULTAT").co(super::common::RESULTS).o(),
+            simp("MODELE_VISU").co(&[ConceptKind::Modele]).o(),
+            simp("INFO").i().d(1).one_of_i(&[1, 2]),
+        ])
 }

@@ -1,5 +1,9 @@
-use super::common::*;
-use super::tables::filter_keywords;
+//! The checks: TEST_TABLE, TEST_FONCTION, and TEST_RESU (`test_resu`).
+
+pub mod test_resu;
+
+use crate::catalog::commands::common::*;
+use crate::catalog::commands::tables::filter_keywords;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptKind;
 use crate::kws;
@@ -20,7 +24,7 @@ pub fn check_keywords() -> Vec<Entry> {
 }
 
 pub fn commands() -> Vec<Command> {
-    vec![
+    let mut v = vec![
         Command::new("TEST_TABLE", "Check a value of a table against VALE_CALC and a reference.")
             .kw(with(
                 kws![
@@ -84,5 +88,7 @@ pub fn commands() -> Vec<Command> {
                 simp("INFO").i().one_of_i(&[1, 2]).d(1),
             ])
             .rules(vec![au_moins_un(&["VALEUR", "ATTRIBUT"])]),
-    ]
+    ];
+    v.extend(test_resu::commands());
+    v
 }

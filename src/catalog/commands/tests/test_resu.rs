@@ -1,7 +1,7 @@
 //! TEST_RESU: compare values extracted from results, fields and meshes with
 //! computed (non-regression) and reference values.
 
-use super::common::*;
+use crate::catalog::commands::common::*;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptKind;
 use crate::kws;
