@@ -13,6 +13,8 @@
 //!
 //! Symbolic analysis, numeric factorisation and solve are timed separately.
 
+pub mod scaling;
+
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::linalg::solvers::Solve;

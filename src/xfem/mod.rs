@@ -6,6 +6,7 @@
 //! (`MAILFISS.HEAV`). The computations live in [`levelset`]; the region
 //! codes of nodes over a list of cracks (`xlsjon`, `xcalc_code`) are here.
 
+pub mod conditions;
 pub mod czm;
 pub mod discrete;
 pub mod levelset;

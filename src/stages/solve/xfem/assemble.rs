@@ -1,0 +1,135 @@
+//! The discrete operators of an X-FEM solve, assembled once: the bulk stiffness on the sub-cells, the
+//! mortar couplings of each cohesive zone, and the cohesive law of each multiplier packet.
+
+use super::setup::Setup;
+use crate::catalog::args::Args;
+use crate::diag::{Error, Result};
+use crate::stages::core::problem::elastic_of;
+use crate::xfem::czm::CzmParams;
+use crate::xfem::discrete::{self, Coupling, XDofs};
+use std::collections::{BTreeMap, BTreeSet};
+use std::time::{Duration, Instant};
+
+/// A cohesive zone: its crack, law, facet rule and multiplier packets.
+pub struct Zone {
+    pub crack: usize,
+    pub params: CzmParams,
+    pub order: i64,
+    pub packets: Vec<Vec<usize>>,
+    pub packet_of: BTreeMap<usize, usize>,
+    pub edges: BTreeSet<(usize, usize)>,
+}
+
+/// A linear element: unknowns and matrix (row-major).
+pub struct Lin {
+    pub dofs: Vec<usize>,
+    pub k: Vec<f64>,
+}
+
+/// One packet's cohesive law: zone, lumped weight, first unknown (λ, then w).
+pub struct Law {
+    pub zone: usize,
+    pub m: f64,
+    pub base: usize,
+}
+
+/// The operators assembled once: linear elements, cohesive laws, the interface measure per packet of
+/// each zone, and the time it took.
+pub struct Elements {
+    pub lins: Vec<Lin>,
+    pub laws: Vec<Law>,
+    pub lumped: Vec<Vec<f64>>,
+    pub time: Duration,
+}
+
+pub fn elements(a: &Args, s: &Setup) -> Result<Elements> {
+    let t0 = Instant::now();
+    let (mesh, xm, xd, md, ndim) = (&s.mesh, &s.xm, &s.xd, s.md, s.ndim());
+    let mut lins: Vec<Lin> = Vec::new();
+    for &c in &s.model_cells {
+        let m = s.material(a, c)?;
+        let (law, _) = elastic_of(&m, &mesh.cell_names[c]).map_err(|e| e.at(a.span))?;
+        law.check(md).map_err(|e| a.err("CHAM_MATER", format!("cell {}: {e}", mesh.cell_names[c])))?;
+        let nodes = &mesh.cells[c];
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let k = discrete::bulk_stiffness(mesh.cell_types[c], &coords, nodes, xm, c, &law.hooke(md), md.nsig(), ndim)
+            .map_err(|e| Error::runtime(format!("cell {}: {e}", mesh.cell_names[c])).at(a.span))?;
+        lins.push(Lin { dofs: xd.cell_dofs(nodes), k });
+    }
+    let mut laws: Vec<Law> = Vec::new();
+    let mut lumped: Vec<Vec<f64>> = Vec::new();
+    let lonref = {
+        let (lo, hi) = mesh.bounding_box().unwrap_or(([0.0; 3], [1.0; 3]));
+        (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
+    };
+    for (zi, z) in s.zones.iter().enumerate() {
+        let rule = discrete::facet_rule(ndim, z.order).map_err(|e| a.err("CONTACT", e))?;
+        let facets = discrete::facets(mesh, xm, z.crack, 1e-9 * lonref);
+        let cps = discrete::couplings(mesh, xm, z.crack, &facets, &rule, &z.packet_of, &z.edges, ndim)
+            .map_err(|e| a.err("CONTACT", format!("{}: {e}", xm.crack_names[z.crack])))?;
+        let mut m = vec![0.0; z.packets.len()];
+        for cp in &cps {
+            lins.push(coupling(&s.mesh, &s.xd, z.crack, cp, ndim));
+            for (k, &p) in cp.packets.iter().enumerate() {
+                m[p] += cp.m[k];
+            }
+        }
+        for (k, &mk) in m.iter().enumerate() {
+            if mk <= 0.0 {
+                return Err(a.err(
+                    "CONTACT",
+                    format!(
+                        "{}: multiplier packet {:?} has no interface measure",
+                        xm.crack_names[z.crack],
+                        super::report::names(mesh, &z.packets[k])
+                    ),
+                ));
+            }
+            laws.push(Law { zone: zi, m: mk, base: xd.packets[z.crack][k] });
+        }
+        lumped.push(m);
+    }
+
+    Ok(Elements { lins, laws, lumped, time: t0.elapsed() })
+}
+
+/// The mortar coupling of one cell with the packets it touches: the unknowns (the cell's, then w and μ
+/// of each packet) and the symmetric matrix of the constraints μ·(C u − M w).
+fn coupling(mesh: &crate::mesh::Mesh, xd: &XDofs, crack: usize, cp: &Coupling, ndim: usize) -> Lin {
+    let z_crack = crack;
+    let nodes = &mesh.cells[cp.cell];
+    let mut dofs = xd.cell_dofs(nodes);
+    let nu = dofs.len();
+    let np = cp.packets.len();
+    for &k in &cp.packets {
+        let b = xd.packets[z_crack][k];
+        dofs.extend(b + ndim..b + 2 * ndim); // w
+    }
+    for &k in &cp.packets {
+        let b = xd.packets[z_crack][k];
+        dofs.extend(b + 2 * ndim..b + 3 * ndim); // μ
+    }
+    let nd = dofs.len();
+    let mut ke = vec![0.0; nd * nd];
+    let wof = |k: usize, q: usize| nu + k * ndim + q;
+    let muof = |k: usize, q: usize| nu + np * ndim + k * ndim + q;
+    for r in 0..nu {
+        for k in 0..np {
+            for q in 0..ndim {
+                let v = cp.c[r * np * ndim + k * ndim + q];
+                ke[r * nd + muof(k, q)] += v;
+                ke[muof(k, q) * nd + r] += v;
+            }
+        }
+    }
+    for k in 0..np {
+        for l in 0..np {
+            for q in 0..ndim {
+                let v = -cp.mm[k * np + l];
+                ke[muof(k, q) * nd + wof(l, q)] += v;
+                ke[wof(k, q) * nd + muof(l, q)] += v;
+            }
+        }
+    }
+    Lin { dofs, k: ke }
+}

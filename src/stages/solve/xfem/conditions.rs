@@ -1,0 +1,264 @@
+//! The kinematic conditions of an X-FEM solve at an instant: DDL_IMPO on standard, Heaviside and
+//! hydraulic components; function-valued conditions on enriched nodes through `xfem::conditions`
+//! (`xddlimf`); the elimination of fully prescribed hydraulics with its report; the rigid translations
+//! pinned under NPREC < 0.
+
+use super::report::names;
+use super::setup::Setup;
+use crate::catalog::args::Args;
+use crate::concepts::model::{LoadItem, LoadValue};
+use crate::concepts::{ConceptData, ConceptRef};
+use crate::diag::Result;
+use crate::fem::dofs::Constraints;
+use crate::stages::core::assembly::loads;
+use crate::stages::core::eval::{eval_at, load_value};
+use crate::xfem::conditions::{function_jumps, trace_sets};
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write as _;
+use std::rc::Rc;
+
+/// A function concept at time `t`, as a closure of the position.
+fn at_t(f: &ConceptRef, t: f64) -> impl Fn(&[f64; 3]) -> std::result::Result<f64, String> + '_ {
+    move |x| eval_at(f, x, t).map_err(|e| e.msg)
+}
+
+const HYDRAULIC: &[&str] = &["PRE1", "PRE_FLU", "LAG_FLI", "LAG_FLS", "PR2_FLU", "LA2_FLI", "LA2_FLS"];
+
+fn is_hydraulic(c: &str) -> bool {
+    HYDRAULIC.contains(&c) || (c.starts_with('H') && c.ends_with("PRE1"))
+}
+
+/// The enrichment-set index and direction of a component `H<j><X|Y|Z>`.
+fn heaviside_component(c: &str) -> Option<(usize, usize)> {
+    let r = c.strip_prefix('H')?;
+    let (j, d) = r.split_at(r.len().checked_sub(1)?);
+    let j: usize = j.parse().ok()?;
+    let d = match d {
+        "X" => 0,
+        "Y" => 1,
+        "Z" => 2,
+        _ => return None,
+    };
+    (j >= 1).then_some((j - 1, d))
+}
+
+fn direction(c: &str) -> Option<usize> {
+    match c {
+        "DX" => Some(0),
+        "DY" => Some(1),
+        "DZ" => Some(2),
+        _ => None,
+    }
+}
+
+/// The kinematic conditions of the loads at `t`, the report on the
+/// hydraulic unknowns (HM models: all must be prescribed to zero), and the
+/// rigid translations pinned when NPREC < 0.
+pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<(Constraints, String, Vec<String>)> {
+    let (mesh, xm, xd, ndim) = (&*s.mesh, &*s.xm, &s.xd, s.ndim());
+    let mut cons = Constraints::new();
+    let mut hydraulic: BTreeMap<(usize, String), f64> = BTreeMap::new();
+    let mut blocked_dir = vec![false; ndim];
+    let mut jump_cache: BTreeMap<(usize, String), bool> = BTreeMap::new();
+    for (lc, mult) in loads(a, t)? {
+        let data = lc.data();
+        let ConceptData::Load(load) = &*data else {
+            return Err(a.err("EXCIT", format!("{} is not a mechanical load", lc.label())));
+        };
+        if !Rc::ptr_eq(&load.model, model) {
+            return Err(
+                a.err("EXCIT", format!("load {} is defined on another model ({})", lc.label(), load.model.label()))
+            );
+        }
+        for item in &load.items {
+            let LoadItem::Dof { node, component, value } = item else {
+                return Err(
+                    a.err("EXCIT", format!("load {}: only DDL_IMPO is supported yet on an X-FEM model", lc.label()))
+                );
+            };
+            let n = *node;
+            let Some(std) = xd.std[n] else {
+                return Err(
+                    a.err("EXCIT", format!("load {}: node {} is not in the model", lc.label(), mesh.node_names[n]))
+                );
+            };
+            let c = component.as_str();
+            if is_hydraulic(c) {
+                if !s.hm {
+                    return Err(
+                        a.err("EXCIT", format!("load {}: component {c} does not exist in this model", lc.label()))
+                    );
+                }
+                let v = mult * load_value(value, &mesh.coords[n], t)?;
+                hydraulic.insert((n, c.to_string()), v);
+                continue;
+            }
+            if let Some(d) = direction(c).filter(|&d| d < ndim) {
+                let v = mult * load_value(value, &mesh.coords[n], t)?;
+                cons.impose(std + d, v);
+                blocked_dir[d] = true;
+                // A function-valued condition prescribes the trace on every
+                // side of the node (xddlimf): each Heaviside part makes the
+                // trace match the function just across the interface.
+                if load.functional && !xd.sets[n].is_empty() {
+                    let LoadValue::Func(f) = value else { unreachable!("functional load") };
+                    let same: BTreeSet<usize> = load
+                        .items
+                        .iter()
+                        .filter_map(|it| match it {
+                            LoadItem::Dof { node, component, value: LoadValue::Func(g) }
+                                if component == c && Rc::ptr_eq(g, f) =>
+                            {
+                                Some(*node)
+                            }
+                            _ => None,
+                        })
+                        .collect();
+                    let key = (Rc::as_ptr(f) as usize, c.to_string());
+                    let jumps = match jump_cache.get(&key) {
+                        Some(&j) => j,
+                        None => {
+                            let j = function_jumps(mesh, xm, &same, &at_t(f, t))
+                                .map_err(|e| a.err("EXCIT", format!("load {}: {c}: {e}", lc.label())))?;
+                            jump_cache.insert(key, j);
+                            j
+                        }
+                    };
+                    let (values, points) = trace_sets(mesh, xm, n, &same, &at_t(f, t), jumps).map_err(|e| {
+                        a.err("EXCIT", format!("load {}: {c} at node {}: {e}", lc.label(), mesh.node_names[n]))
+                    })?;
+                    for (j, h) in values {
+                        cons.impose(xd.sets[n][j] + d, mult * h);
+                    }
+                    // xddlimf's point relation: the whole field at a point
+                    // of the set's region equals the function there.
+                    for p in points {
+                        let nodes = &mesh.cells[p.cell];
+                        let mut terms = Vec::new();
+                        for (k, &i) in nodes.iter().enumerate() {
+                            let std_i = xd.std[i].expect("node of a model cell");
+                            terms.push((std_i + d, p.ff[k]));
+                            if let Some(jj) = xm.node_sets[i].iter().position(|&r| r == p.region) {
+                                terms.push((xd.sets[i][jj] + d, 2.0 * p.ff[k]));
+                            }
+                        }
+                        cons.relation(terms, mult * p.value);
+                    }
+                }
+            } else if let Some((j, d)) = heaviside_component(c).filter(|&(_, d)| d < ndim) {
+                // Acts on the nodes that carry the set.
+                if let Some(&b) = xd.sets[n].get(j) {
+                    cons.impose(b + d, mult * load_value(value, &mesh.coords[n], t)?);
+                }
+            } else {
+                return Err(a.err(
+                    "EXCIT",
+                    format!("load {}: DDL_IMPO on {c} is not supported yet on an X-FEM model", lc.label()),
+                ));
+            }
+        }
+    }
+    let report = if s.hm { hydraulic_report(a, s, &hydraulic)? } else { String::new() };
+    let pins = pin_translations(s, &mut cons, &blocked_dir);
+    Ok((cons, report, pins))
+}
+
+/// The report on the hydraulic unknowns of an HM model: every one must be prescribed to zero to be
+/// eliminated (PRE1 on the vertices, H*PRE1 on the enrichment sets, p_f/q⁺/q⁻ on the packets).
+fn hydraulic_report(a: &Args, s: &Setup, hydraulic: &BTreeMap<(usize, String), f64>) -> Result<String> {
+    let (mesh, xm, xd, ndim, zones) = (&*s.mesh, &*s.xm, &s.xd, s.ndim(), &s.zones);
+    let mut report = String::new();
+    if let Some(((n, c), v)) = hydraulic.iter().find(|(_, v)| **v != 0.0) {
+        return Err(a.err(
+            "EXCIT",
+            format!(
+                "{c} = {v} at node {}: a non-zero hydraulic condition needs coupled flow, which X-FEM {} \
+                 elements do not support yet",
+                mesh.node_names[*n],
+                if ndim == 2 { "D_PLAN_HM" } else { "3D_HM" }
+            ),
+        ));
+    }
+    let fixed = |n: usize, c: &str| hydraulic.contains_key(&(n, c.to_string()));
+    let free_msg = |what: String| {
+        a.err(
+            "EXCIT",
+            format!(
+                "{what} is not prescribed: coupled hydraulics in X-FEM elements is not supported yet \
+                 (the hydraulic unknowns are eliminated only when all are prescribed to zero)"
+            ),
+        )
+    };
+    let mut vertices: BTreeSet<usize> = BTreeSet::new();
+    for (nodes, t) in mesh.cells.iter().zip(&mesh.cell_types) {
+        if t.dim() == ndim {
+            vertices.extend(nodes[..t.nvertices()].iter().copied().filter(|&n| xd.std[n].is_some()));
+        }
+    }
+    let mut n_h = 0;
+    for &n in &vertices {
+        if !fixed(n, "PRE1") {
+            return Err(free_msg(format!("PRE1 at node {}", mesh.node_names[n])));
+        }
+        for j in 0..xd.sets[n].len() {
+            let c = format!("H{}PRE1", j + 1);
+            if !fixed(n, &c) {
+                return Err(free_msg(format!("{c} at node {}", mesh.node_names[n])));
+            }
+            n_h += 1;
+        }
+    }
+    // Fracture unknowns: one block per crack a node's packets belong to.
+    let mut n_pk = 0;
+    for z in zones {
+        for p in &z.packets {
+            let block = |n: usize| zones.iter().filter(|o| o.crack < z.crack && o.packet_of.contains_key(&n)).count();
+            for (role, cmps) in
+                [("p_f", ["PRE_FLU", "PR2_FLU"]), ("q+", ["LAG_FLI", "LA2_FLI"]), ("q-", ["LAG_FLS", "LA2_FLS"])]
+            {
+                let ok = p.iter().any(|&n| {
+                    let b = block(n);
+                    b < 2 && (fixed(n, cmps[b]) || (role == "p_f" && b == 1 && fixed(n, cmps[0])))
+                });
+                if !ok {
+                    return Err(free_msg(format!(
+                        "the fracture unknown {role} ({}) of {} on packet {:?}",
+                        cmps.join("/"),
+                        xm.crack_names[z.crack],
+                        names(mesh, p)
+                    )));
+                }
+            }
+            n_pk += 1;
+        }
+    }
+    let _ = writeln!(
+        report,
+        "    eliminated: hydraulics — PRE1 on {} vertices, H*PRE1 on {n_h} enrichment sets, fracture p_f/q+/q- on {n_pk} packets, \
+         all prescribed to 0 by the loads; with p = p_f = 0 the Biot term b·p and the fracture pressure in the interface \
+         vanish, so THM_INIT, THM_DIFFU, THM_LIQU, SCHEMA_THM and the time step play no part",
+        vertices.len()
+    );
+    Ok(report)
+}
+
+/// Rigid translations with no condition at all, pinned when NPREC < 0 (as a singular-tolerant direct
+/// solver would pick one solution); what was pinned, for the log.
+fn pin_translations(s: &Setup, cons: &mut Constraints, blocked_dir: &[bool]) -> Vec<String> {
+    let (mesh, xd) = (&*s.mesh, &s.xd);
+    let mut pins = Vec::new();
+    for (d, blocked) in blocked_dir.iter().enumerate() {
+        if *blocked || s.opts.nprec >= 0 {
+            continue;
+        }
+        let n = xd.std.iter().position(|s| s.is_some()).expect("a node");
+        cons.impose(xd.std[n].unwrap() + d, 0.0);
+        pins.push(format!(
+            "no condition on D{} anywhere: the rigid translation is fixed by D{} = 0 at node {} (SOLVEUR NPREC < 0)",
+            ["X", "Y", "Z"][d],
+            ["X", "Y", "Z"][d],
+            mesh.node_names[n]
+        ));
+    }
+    pins
+}

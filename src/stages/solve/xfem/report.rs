@@ -1,0 +1,196 @@
+//! What an X-FEM solve tells: the state of each cohesive interface per instant, the run log (what was
+//! simulated and eliminated, the unknowns, the Newton table, the time of each phase), readable names of
+//! unknowns, and the DEPL field on the mesh nodes.
+
+use super::assemble::Elements;
+use super::setup::Setup;
+use super::step::Run;
+use crate::concepts::result::Field;
+use crate::concepts::ConceptRef;
+use crate::fem::elasticity::Modelisation;
+use crate::mesh::Mesh;
+use crate::xfem::czm::CzmState;
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::time::Instant;
+
+/// The state of each cohesive interface at the end of an instant: tractions, openings, damage, energy.
+pub fn zone_state(su: &Setup, el: &Elements, states: &[CzmState], x: &[f64]) -> String {
+    let ndim = su.ndim();
+    let mut zone_log = String::new();
+    for (zi, z) in su.zones.iter().enumerate() {
+        let (mut lmin, mut lmax, mut wmax, mut wmin) = (f64::MAX, f64::MIN, f64::MIN, f64::MAX);
+        let mut counts = [0usize; 3];
+        let mut energy = 0.0;
+        for (li, l) in el.laws.iter().enumerate().filter(|(_, l)| l.zone == zi) {
+            lmin = lmin.min(x[l.base]);
+            lmax = lmax.max(x[l.base]);
+            wmin = wmin.min(x[l.base + ndim]);
+            wmax = wmax.max(x[l.base + ndim]);
+            counts[states[li].state.min(2) as usize] += 1;
+            energy += l.m * z.params.dissipated_energy(states[li].kappa);
+        }
+        let _ = writeln!(
+            zone_log,
+            "        {}: lambda_n in [{lmin:.9e}, {lmax:.9e}], w_n in [{wmin:.9e}, {wmax:.9e}], sound/damaged/broken {}/{}/{}, dissipated {energy:.9e}",
+            su.xm.crack_names[z.crack], counts[0], counts[1], counts[2]
+        );
+    }
+    zone_log
+}
+
+/// The run log of a solve: what was simulated, eliminated, and how.
+pub fn run_log(command: &str, model: &ConceptRef, su: &Setup, el: &Elements, run: &Run, t_start: Instant) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "  {command} on X-FEM model {} ({}):", model.label(), su.modelisation);
+    let _ = writeln!(
+        s,
+        "    simulated : {} elasticity, Heaviside enrichment by {} interface(s) ({})",
+        match su.md {
+            Modelisation::DPlan => "plane-strain",
+            Modelisation::CPlan => "plane-stress",
+            _ => "3D",
+        },
+        su.xm.cracks.len(),
+        su.xm.crack_names.join(", ")
+    );
+    for (zi, z) in su.zones.iter().enumerate() {
+        let _ = writeln!(
+            s,
+            "                cohesive interface {} (CZM_LIN_MIX, mortar, {} packets, facet rule ORDRE_INT={}, interface measure {:.12e})",
+            su.xm.crack_names[z.crack],
+            z.packets.len(),
+            z.order,
+            el.lumped[zi].iter().sum::<f64>()
+        );
+    }
+    for (g, name) in su.xm.crack_names.iter().enumerate() {
+        if !su.zones.iter().any(|z| z.crack == g) {
+            let _ = writeln!(s, "                {name}: no contact zone: free surfaces, no interface unknowns");
+        }
+    }
+    if su.hm {
+        s.push_str(&run.hm_report);
+    }
+    for p in &run.pinned {
+        let _ = writeln!(s, "    null mode : {p}");
+    }
+    if !run.vanished_steps.is_empty() {
+        let _ = writeln!(
+            s,
+            "    criterion : at steps {:?} the reactions vanished (below 1e-6 of the largest earlier one); \
+             RESI_GLOB_RELA was measured against the largest earlier reaction",
+            run.vanished_steps
+        );
+    }
+    if su.iter_cont_maxi > 0 {
+        let _ = writeln!(
+            s,
+            "    contact loop: the cohesive variables are updated after each converged step (ITER_CONT_MAXI={} not needed)",
+            su.iter_cont_maxi
+        );
+    }
+    let _ = writeln!(
+        s,
+        "    unknowns  : {} ({} standard, {} Heaviside, {} interface λ/w/μ), {} solved after elimination of the kinematic conditions",
+        su.xd.n, su.xd.n_std, su.xd.n_heaviside, su.xd.n_interface, run.nfree
+    );
+    let _ = writeln!(
+        s,
+        "  {:>4}  {:>14}  {:>5}  {:>14}  {:>14}",
+        "step", "INST", "iters", "RESI_GLOB_RELA", "RESI_GLOB_MAXI"
+    );
+    s.push_str(&run.log);
+    let _ = writeln!(
+        s,
+        "    time      : elements {:.3} s, assembly {:.3} s, factorization and solves {:.3} s, total {:.3} s",
+        el.time.as_secs_f64(),
+        run.t_asm.as_secs_f64(),
+        run.t_fact.as_secs_f64(),
+        t_start.elapsed().as_secs_f64()
+    );
+    s
+}
+
+/// The names of nodes.
+pub fn names(mesh: &Mesh, nodes: &[usize]) -> Vec<String> {
+    nodes.iter().map(|&n| mesh.node_names[n].clone()).collect()
+}
+
+/// A readable name of an unknown.
+pub fn label(s: &Setup, d: usize) -> String {
+    let (mesh, xm, xd, zones) = (&*s.mesh, &*s.xm, &s.xd, &s.zones);
+    const XYZ: [&str; 3] = ["X", "Y", "Z"];
+    for (n, s) in xd.std.iter().enumerate() {
+        if let Some(b) = s {
+            if (*b..*b + xd.ndim).contains(&d) {
+                return format!("{} D{}", mesh.node_names[n], XYZ[d - b]);
+            }
+        }
+        for (j, &b) in xd.sets[n].iter().enumerate() {
+            if (b..b + xd.ndim).contains(&d) {
+                return format!("{} H{}{}", mesh.node_names[n], j + 1, XYZ[d - b]);
+            }
+        }
+    }
+    for z in zones {
+        for (k, &b) in xd.packets[z.crack].iter().enumerate() {
+            if (b..b + 3 * xd.ndim).contains(&d) {
+                let what = ["λ", "w", "μ"][(d - b) / xd.ndim];
+                return format!(
+                    "{} packet {:?} {what}{}",
+                    xm.crack_names[z.crack],
+                    names(mesh, &z.packets[k]),
+                    (d - b) % xd.ndim
+                );
+            }
+        }
+    }
+    format!("unknown #{d}")
+}
+
+/// DEPL of an X-FEM solution on the mesh nodes: DX DY (DZ), PRE1 for HM
+/// models (zero at vertices: eliminated), then H<j><X|Y|Z> per set.
+pub fn depl_fields(s: &Setup, x: &[f64]) -> BTreeMap<String, Field> {
+    let (mesh, xm, xd, hm) = (&*s.mesh, &*s.xm, &s.xd, s.hm);
+    let ndim = xd.ndim;
+    let xyz = ["X", "Y", "Z"];
+    let maxsets = xm.node_sets.iter().map(|s| s.len()).max().unwrap_or(0);
+    let mut comps: Vec<String> = (0..ndim).map(|d| format!("D{}", xyz[d])).collect();
+    if hm {
+        comps.push("PRE1".into());
+    }
+    for j in 0..maxsets {
+        for d in xyz.iter().take(ndim) {
+            comps.push(format!("H{}{d}", j + 1));
+        }
+    }
+    let nc = comps.len();
+    let mut values = vec![f64::NAN; mesh.nnodes() * nc];
+    let mut vertex = vec![false; mesh.nnodes()];
+    for (nodes, t) in mesh.cells.iter().zip(&mesh.cell_types) {
+        if t.dim() == ndim {
+            for &n in &nodes[..t.nvertices()] {
+                vertex[n] = true;
+            }
+        }
+    }
+    for n in 0..mesh.nnodes() {
+        let Some(b) = xd.std[n] else { continue };
+        let row = &mut values[n * nc..(n + 1) * nc];
+        row[..ndim].copy_from_slice(&x[b..b + ndim]);
+        let mut k = ndim;
+        if hm {
+            if vertex[n] {
+                row[k] = 0.0;
+            }
+            k += 1;
+        }
+        for (j, &s) in xd.sets[n].iter().enumerate() {
+            row[k + j * ndim..k + (j + 1) * ndim].copy_from_slice(&x[s..s + ndim]);
+        }
+    }
+    let mut f = BTreeMap::new();
+    f.insert("DEPL".to_string(), Field::Node { components: comps, values });
+    f
+}

@@ -1,0 +1,237 @@
+//! What an X-FEM solve is built from, checked once before the first instant: the modelisation, the
+//! behaviour, the materials, the cohesive zones of DEFI_CONTACT with their multiplier packets, and the
+//! numbering of the unknowns.
+
+use super::assemble::Zone;
+use crate::catalog::args::Args;
+use crate::concepts::model::{Contact, Material, MaterialField, Role};
+use crate::concepts::{ConceptData, ConceptRef};
+use crate::diag::Result;
+use crate::fem::elasticity::Modelisation;
+use crate::mesh::Mesh;
+use crate::solve::{Method, SolverOptions};
+use crate::stages::core::newton::Convergence;
+use crate::stages::core::problem::mat_param;
+use crate::stages::core::solver::solver_options;
+use crate::xfem::czm::CzmParams;
+use crate::xfem::discrete::XDofs;
+use crate::xfem::model::{ContactKind, XfemModel};
+use crate::xfem::mortar;
+use std::rc::Rc;
+
+/// The checked data of one X-FEM solve.
+pub struct Setup {
+    pub mesh: Rc<Mesh>,
+    pub xm: Rc<XfemModel>,
+    /// The bulk cells of the model.
+    pub model_cells: Vec<usize>,
+    /// MODELISATION as Code_Aster names it, its mechanical part, and whether it is hydro-mechanical.
+    pub modelisation: String,
+    pub md: Modelisation,
+    pub hm: bool,
+    pub conv: Convergence,
+    pub opts: SolverOptions,
+    pub chmat: ConceptRef,
+    mats: Vec<Option<ConceptRef>>,
+    pub zones: Vec<Zone>,
+    pub iter_cont_maxi: i64,
+    pub xd: XDofs,
+}
+
+impl Setup {
+    pub fn ndim(&self) -> usize {
+        self.md.dim()
+    }
+
+    /// The material of a cell.
+    pub fn material(&self, a: &Args, c: usize) -> Result<Rc<Material>> {
+        material_of(a, &self.mats, &self.chmat, &self.mesh, c)
+    }
+}
+
+fn material_of(
+    a: &Args,
+    mats: &[Option<ConceptRef>],
+    chmat: &ConceptRef,
+    mesh: &Mesh,
+    c: usize,
+) -> Result<Rc<Material>> {
+    let mc = mats.get(c).cloned().flatten().ok_or_else(|| {
+        a.err("CHAM_MATER", format!("cell {} has no material in {}", mesh.cell_names[c], chmat.label()))
+    })?;
+    let d = mc.data();
+    match &*d {
+        ConceptData::Material(m) => Ok(m.clone()),
+        _ => Err(a.err("CHAM_MATER", format!("{} is not a material", mc.label()))),
+    }
+}
+
+pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
+    let (mesh, xm, elements) = {
+        let m = model.model()?;
+        let Some(xm) = m.xfem.clone() else {
+            return Err(a.err("MODELE", format!("{} is not an X-FEM model", model.label())));
+        };
+        (m.current_mesh(), xm, m.elements.clone())
+    };
+    let model_cells: Vec<usize> =
+        (0..mesh.ncells()).filter(|&c| elements[c].as_ref().is_some_and(|e| e.role == Role::Bulk)).collect();
+    let mut modelisations: Vec<String> =
+        model_cells.iter().filter_map(|&c| elements[c].as_ref().map(|e| e.modelisation.clone())).collect();
+    modelisations.sort();
+    modelisations.dedup();
+    if modelisations.len() != 1 {
+        return Err(a.err(
+            "MODELE",
+            format!("several modelisations in one X-FEM model are not supported yet: {modelisations:?}"),
+        ));
+    }
+    let modelisation = modelisations[0].clone();
+    let (md, hm) = match modelisation.as_str() {
+        "D_PLAN" => (Modelisation::DPlan, false),
+        "C_PLAN" => (Modelisation::CPlan, false),
+        "D_PLAN_HM" => (Modelisation::DPlan, true),
+        "3D" => (Modelisation::ThreeD, false),
+        "3D_HM" => (Modelisation::ThreeD, true),
+        m => return Err(a.err("MODELE", format!("STAT_NON_LINE on an X-FEM {m} model is not supported yet"))),
+    };
+    check_behaviour(a, &modelisation, hm)?;
+    let conv = Convergence::from_args(a)?;
+    let mut opts = solver_options(a);
+    opts.method = Method::Lu;
+
+    let chmat = a.req_concept("CHAM_MATER")?;
+    let mats: Vec<Option<ConceptRef>> = match &*chmat.data() {
+        ConceptData::MaterialField(MaterialField { cells, .. }) => cells.clone(),
+        _ => return Err(a.err("CHAM_MATER", format!("{} is not a material field", chmat.label()))),
+    };
+    let material = |c: usize| material_of(a, &mats, &chmat, &mesh, c);
+    let (zones, iter_cont_maxi) = zones(a, model, &mesh, &xm, &material)?;
+    let mut npk = vec![0; xm.cracks.len()];
+    for z in &zones {
+        npk[z.crack] = z.packets.len();
+    }
+    let xd = XDofs::new(&mesh, &model_cells, &xm, md.dim(), &npk);
+    Ok(Setup { mesh, xm, model_cells, modelisation, md, hm, conv, opts, chmat, mats, zones, iter_cont_maxi, xd })
+}
+
+/// COMPORTEMENT: the elastic part of the kit; the hydraulic laws only act on eliminated unknowns.
+fn check_behaviour(a: &Args, modelisation: &str, hm: bool) -> Result<()> {
+    for occ in a.facts("COMPORTEMENT") {
+        let rel = occ.text("RELATION").unwrap_or("ELAS");
+        match (rel, hm) {
+            ("ELAS", false) => {}
+            ("KIT_HM", true) => {
+                let kit = occ.texts("RELATION_KIT");
+                if kit.first().map(String::as_str) != Some("ELAS") {
+                    return Err(occ.err(
+                        "RELATION_KIT",
+                        format!("only an ELAS skeleton is supported yet in KIT_HM (got {kit:?})"),
+                    ));
+                }
+                for k in &kit[1..] {
+                    if !matches!(k.as_str(), "LIQU_SATU" | "HYDR_UTIL") {
+                        return Err(occ.err("RELATION_KIT", format!("'{k}' is not supported yet")));
+                    }
+                }
+            }
+            _ => {
+                return Err(occ.err(
+                    "RELATION",
+                    format!("RELATION='{rel}' on an X-FEM {modelisation} model is not supported yet"),
+                ))
+            }
+        }
+        if occ.text("DEFORMATION").is_some_and(|d| d != "PETIT") {
+            return Err(occ.err("DEFORMATION", "only DEFORMATION='PETIT' is supported yet"));
+        }
+    }
+    if a.given("SCHEMA_THM") && !hm {
+        return Err(a.err("SCHEMA_THM", format!("SCHEMA_THM needs a hydro-mechanical model ({modelisation} is not)")));
+    }
+    Ok(())
+}
+
+/// The cohesive zones of CONTACT (DEFI_CONTACT): per zone its crack, RUPT_FRAG law, facet rule and
+/// multiplier packets (VERSION2), and ITER_CONT_MAXI.
+fn zones(
+    a: &Args,
+    model: &ConceptRef,
+    mesh: &Mesh,
+    xm: &XfemModel,
+    material: &dyn Fn(usize) -> Result<Rc<Material>>,
+) -> Result<(Vec<Zone>, i64)> {
+    let mut zones: Vec<Zone> = Vec::new();
+    let mut iter_cont_maxi = 0;
+    if let Some(cc) = a.concept("CONTACT") {
+        let d = cc.data();
+        let ConceptData::Contact(Contact { zones: cz, model: cmodel, iter_cont_maxi: icm }) = &*d else {
+            return Err(a.err("CONTACT", format!("{} is not a contact definition", cc.label())));
+        };
+        if !Rc::ptr_eq(cmodel, model) {
+            return Err(a.err("CONTACT", format!("{} is defined on another model ({})", cc.label(), cmodel.label())));
+        }
+        iter_cont_maxi = *icm;
+        // Contact cells of every crack (xtyele), over the model's cracks.
+        let topo: Vec<mortar::CrackTopo> = xm
+            .cracks
+            .iter()
+            .map(|k| mortar::CrackTopo { lsn: &k.lsn, status: &k.status, heaviside_cells: &k.heaviside_cells })
+            .collect();
+        let contact = mortar::contact_cells(mesh, &topo);
+        if xm.contact != ContactKind::Mortar {
+            return Err(a.err("CONTACT", "the cohesive zones need MODI_MODELE_XFEM CONTACT='MORTAR'"));
+        }
+        for z in cz {
+            let g = xm.cracks.iter().position(|k| Rc::ptr_eq(k, &z.crack)).ok_or_else(|| {
+                a.err("CONTACT", format!("FISS_MAIT={} is not a crack of {}", z.crack_name, model.label()))
+            })?;
+            if zones.iter().any(|o| o.crack == g) {
+                return Err(a.err("CONTACT", format!("two zones on {}", z.crack_name)));
+            }
+            // RUPT_FRAG of the cells the crack crosses (one material).
+            let mut params: Option<CzmParams> = None;
+            for (&c, xc) in &xm.cells {
+                if !xc.cracks.contains(&g) {
+                    continue;
+                }
+                let m = material(c)?;
+                let name = &mesh.cell_names[c];
+                let get = |p: &str| -> Result<f64> {
+                    mat_param(&m, "RUPT_FRAG", p, name)?.ok_or_else(|| {
+                        a.err("CHAM_MATER", format!("cell {name}: RELATION='CZM_LIN_MIX' needs RUPT_FRAG {p}"))
+                    })
+                };
+                let p = CzmParams::new(get("SIGM_C")?, get("GC")?, get("PENA_LAGR")?)
+                    .map_err(|e| a.err("CHAM_MATER", format!("cell {name}: RUPT_FRAG: {e}")))?;
+                match params {
+                    None => params = Some(p),
+                    Some(q) if q != p => {
+                        return Err(a.err(
+                            "CHAM_MATER",
+                            format!(
+                                "{}: several RUPT_FRAG materials along one interface are not supported yet",
+                                z.crack_name
+                            ),
+                        ))
+                    }
+                    _ => {}
+                }
+            }
+            let params = params.ok_or_else(|| a.err("CONTACT", format!("{} crosses no cell", z.crack_name)))?;
+            let cells = &contact[g];
+            let master = xm.masters[g].map(|(m, c)| (xm.lsn[m].as_slice(), c));
+            let edges = mortar::cut_edges(mesh, cells, &xm.lsn[g], master);
+            let pk = mortar::vital_edges(&edges);
+            zones.push(Zone {
+                crack: g,
+                params,
+                order: z.order,
+                packets: pk.packets.clone(),
+                packet_of: pk.packet_of_node.clone(),
+                edges: edges.iter().map(|e| (e.a.min(e.b), e.a.max(e.b))).collect(),
+            });
+        }
+    }
+    Ok((zones, iter_cont_maxi))
+}
