@@ -7,6 +7,7 @@ use crate::concepts::ConceptRef;
 use crate::diag::{Error, Result};
 use crate::interp::{format, KwArg, Value};
 use crate::syntax::ast::Span;
+use std::rc::Rc;
 
 /// The outcome of validating one call.
 pub struct Validated {
@@ -117,7 +118,10 @@ impl<'a> Level<'a> {
         // as a simple and as a factor keyword (DEBUT's CODE): the value decides.
         let has_fact = |n: &str| active.iter().any(|e| matches!(e, Entry::Fact(f) if f.name == n));
         let has_simp = |n: &str| active.iter().any(|e| matches!(e, Entry::Simp(s) if s.name == n));
-        let mut out = Args { path: self.path.clone(), span, items: Vec::new() };
+        let mut declared = Vec::new();
+        all_names(entries, &mut declared);
+        let declared = (!self.open).then(|| Rc::new(declared));
+        let mut out = Args { path: self.path.clone(), span, items: Vec::new(), declared };
         for e in &active {
             match e {
                 Entry::Simp(s) => {
@@ -135,6 +139,7 @@ impl<'a> Level<'a> {
                             value: ArgValue::Simple(vals),
                             span: k.span,
                             defaulted: false,
+                            read: Default::default(),
                         });
                     } else {
                         match &s.statut {
@@ -146,6 +151,7 @@ impl<'a> Level<'a> {
                                 value: ArgValue::Simple(d.iter().map(lit_val).collect()),
                                 span,
                                 defaulted: true,
+                                read: Default::default(),
                             }),
                             Statut::F => {}
                         }
@@ -175,7 +181,13 @@ impl<'a> Level<'a> {
                         }
                     };
                     if let Some((occ, sp, defaulted)) = occ {
-                        out.items.push(Arg { name: f.name.into(), value: ArgValue::Factor(occ), span: sp, defaulted });
+                        out.items.push(Arg {
+                            name: f.name.into(),
+                            value: ArgValue::Factor(occ),
+                            span: sp,
+                            defaulted,
+                            read: Default::default(),
+                        });
                     }
                 }
                 Entry::Bloc(_) => unreachable!("blocks are flattened"),
@@ -193,6 +205,7 @@ impl<'a> Level<'a> {
                         value: ArgValue::Simple(vec![v]),
                         span: k.span,
                         defaulted: false,
+                        read: Default::default(),
                     });
                 }
             }
@@ -505,7 +518,7 @@ fn is_factor_value(v: &Value) -> bool {
     }
 }
 
-fn all_names<'e>(entries: &'e [Entry], out: &mut Vec<&'e str>) {
+fn all_names(entries: &[Entry], out: &mut Vec<&'static str>) {
     for e in entries {
         match e {
             Entry::Simp(s) => out.push(s.name),

@@ -3,6 +3,7 @@
 //! and result files, check records).
 
 use super::export::Dir;
+use crate::catalog::args::take_undeclared_lookups;
 use crate::catalog::schema::Produces;
 use crate::catalog::{catalogue, validate};
 use crate::concepts::{Concept, ConceptData};
@@ -158,7 +159,10 @@ impl Session {
         let line = self.line_of(span);
         let globals = self.globals.clone();
         let mut ctx = Ctx { io: self, globals, command: name, line };
+        args.reset_reads();
+        take_undeclared_lookups();
         let data = stage(&mut ctx, &args).map_err(|e| e.at(span).in_command(name))?;
+        stages::all_keywords_used(name, &args).map_err(|e| e.at(span).in_command(name))?;
         match (kind, data) {
             (Some(k), Some(d)) => Ok(match &validated.reuse {
                 Some(r) => {

@@ -35,8 +35,8 @@ fn function_from(a: &Args, base: Option<&Function>, x: Vec<f64>, y: Vec<f64>) ->
         None => ("TOUTPARA".into(), "TOUTRESU".into(), (Interp::Lin, Interp::Lin), Prol::Exclu, Prol::Exclu),
     };
     Function::new(
-        a.text("NOM_PARA").unwrap_or(&np),
-        a.text("NOM_RESU").unwrap_or(&nr),
+        a.text_if_declared("NOM_PARA").unwrap_or(&np),
+        a.text_if_declared("NOM_RESU").unwrap_or(&nr),
         x,
         y,
         interp_of(a, "INTERPOL", it),

@@ -102,7 +102,7 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
         let value = occ.val("PRES").and_then(load_value).ok_or_else(|| occ.err("PRES", "PRES is required"))?;
         items.push(LoadItem::Pressure { cells, value });
     }
-    if let Some(occ) = a.fact("PESANTEUR") {
+    if let Some(occ) = a.declares("PESANTEUR").then(|| a.fact("PESANTEUR")).flatten() {
         let d = occ.reals("DIRECTION");
         let cells = if occ.has("GROUP_MA") { Some(select_cells(&mesh, occ, &name)?) } else { None };
         items.push(LoadItem::Gravity { g: occ.req_real("GRAVITE")?, direction: [d[0], d[1], d[2]], cells });

@@ -15,6 +15,8 @@ pub fn defi_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     a.refuse(&["MATER", "TABLE"])?;
     let mut m = Material::default();
     for item in &a.items {
+        // Every behaviour is stored; the stages that compute with a material read what they need.
+        item.read.set(true);
         match &item.value {
             ArgValue::Factor(occs) => {
                 let occ = &occs[0];

@@ -25,7 +25,7 @@ pub mod xfem;
 
 use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
-use crate::diag::Result;
+use crate::diag::{Error, Result};
 use crate::interp::Scope;
 
 /// One printed check line, for the run summary and the conformance table.
@@ -75,6 +75,28 @@ pub struct Ctx<'a> {
 
 pub type StageFn = fn(&mut Ctx, &Args) -> Result<Option<ConceptData>>;
 
+/// After a stage: every keyword the user wrote was used (read, or refused by name), and the stage looked
+/// up only keywords its schema declares. A keyword the stage passed over stops the run by name rather
+/// than being ignored; a lookup of an undeclared keyword is a defect of the stage (it would read
+/// "absent" forever) and stops the run as an internal error.
+pub fn all_keywords_used(command: &str, args: &Args) -> Result<()> {
+    let undeclared = crate::catalog::args::take_undeclared_lookups();
+    if !undeclared.is_empty() {
+        return Err(Error::runtime(format!(
+            "internal error: the stage of {command} looked up keyword(s) its schema does not declare: {}",
+            undeclared.join(", ")
+        )));
+    }
+    match args.unread().into_iter().next() {
+        Some(u) => Err(Error::unsupported(format!(
+            "{}: {command} does not use this keyword (given in {}): not supported yet",
+            u.name, u.path
+        ))
+        .at(u.span)),
+        None => Ok(()),
+    }
+}
+
 /// The stage of a command, if it has one.
 pub fn stage(name: &str) -> Option<StageFn> {
     Some(match name {
@@ -119,4 +141,51 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "POST_CHAM_XFEM" => xfem::post_cham_xfem,
         _ => return None,
     })
+}
+
+#[cfg(test)]
+mod keyword_tests {
+    use super::*;
+    use crate::catalog::{catalogue, validate};
+    use crate::interp::{KwArg, Value};
+    use crate::syntax::ast::Span;
+
+    fn call(cmd: &str, kw: Vec<(&str, Value)>) -> Args {
+        let kwargs =
+            kw.into_iter().map(|(n, v)| KwArg { name: n.to_string(), value: v, span: Span::default() }).collect();
+        let a = validate::validate(catalogue().get(cmd).unwrap(), kwargs, Span::default()).unwrap().args;
+        a.reset_reads();
+        take();
+        a
+    }
+
+    fn take() {
+        crate::catalog::args::take_undeclared_lookups();
+    }
+
+    #[test]
+    fn a_keyword_the_stage_passes_over_stops_the_run_by_name() {
+        let a =
+            call("DEFI_LIST_REEL", vec![("VALE", Value::list(vec![Value::Float(1.0)])), ("TITRE", Value::str("t"))]);
+        // A stage that reads VALE only.
+        let _ = a.reals("VALE");
+        let e = all_keywords_used("DEFI_LIST_REEL", &a).unwrap_err();
+        assert!(e.msg.starts_with("TITRE: DEFI_LIST_REEL does not use this keyword"), "{}", e.msg);
+        // Read (or refused), it passes; INFO never counts.
+        let _ = a.text("TITRE");
+        all_keywords_used("DEFI_LIST_REEL", &a).unwrap();
+    }
+
+    #[test]
+    fn a_lookup_of_an_undeclared_keyword_is_an_internal_error() {
+        let a = call("DEFI_LIST_REEL", vec![("VALE", Value::list(vec![Value::Float(1.0)]))]);
+        let _ = a.reals("VALE");
+        let _ = a.text("VALEUR"); // misspelt: never declared
+        let e = all_keywords_used("DEFI_LIST_REEL", &a).unwrap_err();
+        assert!(e.msg.contains("does not declare: DEFI_LIST_REEL/VALEUR"), "{}", e.msg);
+        // Shared code asks first.
+        assert!(!a.declares("VALEUR"));
+        assert_eq!(a.text_if_declared("VALEUR"), None);
+        all_keywords_used("DEFI_LIST_REEL", &a).unwrap();
+    }
 }

@@ -123,15 +123,38 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                             (0..mesh.cells.len()).filter(|&c| mesh.cells[c].iter().any(|x| nodes.contains(x))).collect()
                         }
                     };
+                    // (node, cell, values at the node) over the cells of the selection.
+                    let mut at_nodes: Vec<(usize, usize, &[f64])> = Vec::new();
                     for c in cell_list {
                         let Some(vals) = &cells[c] else { continue };
                         for (i, &node) in mesh.cells[c].iter().enumerate() {
-                            if !nodes.contains(&node) {
-                                continue;
+                            if nodes.contains(&node) {
+                                at_nodes.push((node, c, &vals[i * n..(i + 1) * n]));
                             }
+                        }
+                    }
+                    if occ.text("MOYE_NOEUD") == Some("NON") {
+                        // One row per cell and node.
+                        for (node, c, v) in at_nodes {
                             let mut row = head(node, Some(c));
                             for (cn, &k) in comps.iter().zip(&ks) {
-                                row.push((cn.clone(), Cell::Real(vals[i * n + k])));
+                                row.push((cn.clone(), Cell::Real(v[k])));
+                            }
+                            rows.push(row);
+                        }
+                    } else {
+                        // MOYE_NOEUD='OUI' (the default): the values of the cells around a node averaged,
+                        // one row per node, in the order of the node selection.
+                        for &node in &nodes {
+                            let around: Vec<&[f64]> =
+                                at_nodes.iter().filter(|(m, _, _)| *m == node).map(|(_, _, v)| *v).collect();
+                            if around.is_empty() {
+                                continue;
+                            }
+                            let mut row = head(node, None);
+                            for (cn, &k) in comps.iter().zip(&ks) {
+                                let mean = around.iter().map(|v| v[k]).sum::<f64>() / around.len() as f64;
+                                row.push((cn.clone(), Cell::Real(mean)));
                             }
                             rows.push(row);
                         }

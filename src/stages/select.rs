@@ -9,17 +9,17 @@ use std::collections::HashMap;
 
 pub fn select_cells(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
     let mut cells: Vec<usize> = Vec::new();
-    if occ.text("TOUT") == Some("OUI") {
+    if occ.text_if_declared("TOUT") == Some("OUI") {
         cells.extend(0..mesh.cells.len());
     }
-    for g in occ.texts("GROUP_MA") {
+    for g in occ.texts_if_declared("GROUP_MA") {
         let members = mesh
             .cell_groups
             .get(&g)
             .ok_or_else(|| occ.err("GROUP_MA", format!("group of cells '{g}' is not in mesh {mesh_name}")))?;
         cells.extend(members.iter().copied());
     }
-    let names = occ.texts("MAILLE");
+    let names = occ.texts_if_declared("MAILLE");
     if !names.is_empty() {
         let index: HashMap<&str, usize> = mesh.cell_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
         for n in names {
@@ -30,7 +30,7 @@ pub fn select_cells(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usiz
             );
         }
     }
-    for g in occ.texts("SANS_GROUP_MA") {
+    for g in occ.texts_if_declared("SANS_GROUP_MA") {
         let members = mesh
             .cell_groups
             .get(&g)
@@ -45,19 +45,19 @@ pub fn select_cells(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usiz
 /// Nodes selected by TOUT / GROUP_MA / MAILLE / GROUP_NO / NOEUD (and SANS_GROUP_NO).
 pub fn select_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
     let mut nodes: Vec<usize> = Vec::new();
-    if occ.has("TOUT") || occ.has("GROUP_MA") || occ.has("MAILLE") {
+    if occ.has_if_declared("TOUT") || occ.has_if_declared("GROUP_MA") || occ.has_if_declared("MAILLE") {
         for c in select_cells(mesh, occ, mesh_name)? {
             nodes.extend(mesh.cells[c].iter().copied());
         }
     }
-    for g in occ.texts("GROUP_NO") {
+    for g in occ.texts_if_declared("GROUP_NO") {
         let members = mesh
             .node_groups
             .get(&g)
             .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {mesh_name}")))?;
         nodes.extend(members.iter().copied());
     }
-    let names = occ.texts("NOEUD");
+    let names = occ.texts_if_declared("NOEUD");
     if !names.is_empty() {
         let index: HashMap<&str, usize> = mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
         for n in names {
@@ -68,7 +68,7 @@ pub fn select_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usiz
             );
         }
     }
-    for g in occ.texts("SANS_GROUP_NO") {
+    for g in occ.texts_if_declared("SANS_GROUP_NO") {
         let members = mesh
             .node_groups
             .get(&g)

@@ -62,6 +62,42 @@ pub fn refuse_unsupported_options(a: &Args) -> Result<()> {
     Ok(())
 }
 
+/// NEWTON's options (PREDICTION, MATRICE, REAC_ITER, REAC_INCR, ...): our drivers assemble the
+/// consistent tangent at every iteration, which converges to the same state as any of Code_Aster's
+/// choices. A line for the run log when the file asks for something else than the default.
+pub fn newton_note(a: &Args) -> Option<String> {
+    let occ = a.declares("NEWTON").then(|| a.fact("NEWTON")).flatten()?;
+    let asked: Vec<String> =
+        occ.items.iter().filter(|i| !i.defaulted).map(|i| format!("{}={}", i.name, show(&i.value))).collect();
+    occ.read_all();
+    (!asked.is_empty()).then(|| {
+        format!(
+            "    NEWTON    : {} asked; the consistent tangent is assembled at every iteration (same converged state)",
+            asked.join(", ")
+        )
+    })
+}
+
+fn show(v: &crate::catalog::args::ArgValue) -> String {
+    match v {
+        crate::catalog::args::ArgValue::Simple(vals) => vals.iter().map(|x| x.show()).collect::<Vec<_>>().join(", "),
+        crate::catalog::args::ArgValue::Factor(_) => "_F(...)".into(),
+    }
+}
+
+/// COMPORTEMENT's controls of the local integration (ITER_INTE_MAXI, ITER_INTE_PAS, RESI_INTE_RELA,
+/// RESI_INTE, ALGO_INTE): the laws we compute (ELAS, CZM_LIN_MIX) integrate in closed form, so they have
+/// no effect. COMPORTEMENT on part of the model (GROUP_MA, MAILLE) is refused.
+pub fn closed_form_behaviour(occ: &Args) -> Result<()> {
+    occ.refuse(&["GROUP_MA", "MAILLE"])?;
+    for k in ["ITER_INTE_MAXI", "ITER_INTE_PAS", "RESI_INTE_RELA", "RESI_INTE", "ALGO_INTE"] {
+        if occ.declares(k) {
+            occ.has(k);
+        }
+    }
+    Ok(())
+}
+
 /// The largest absolute value of a vector (0 for an empty one).
 pub fn inf_norm(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
@@ -86,7 +122,9 @@ impl Default for Convergence {
 
 impl Convergence {
     pub fn from_args(a: &Args) -> Result<Convergence> {
-        let Some(c) = a.fact("CONVERGENCE") else { return Ok(Convergence::default()) };
+        let Some(c) = a.declares("CONVERGENCE").then(|| a.fact("CONVERGENCE")).flatten() else {
+            return Ok(Convergence::default());
+        };
         for kw in ["RESI_REFE_RELA", "RESI_COMP_RELA"] {
             if c.given(kw) {
                 return Err(c.err(kw, "not supported yet (RESI_GLOB_RELA and RESI_GLOB_MAXI are)"));

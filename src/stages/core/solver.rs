@@ -8,17 +8,28 @@ use crate::fem::dofs::DofMap;
 use crate::fem::elasticity::{self};
 use crate::solve::{self, SolverOptions};
 use std::collections::BTreeMap;
-pub fn solver_options(a: &Args) -> SolverOptions {
+///
+/// Every METHODE of Code_Aster is solved by our sparse direct factorization: the direct ones (MUMPS,
+/// MULT_FRONT, LDLT) are what it is, and an iterative one (GCPC, PETSC) converges towards what it gives
+/// exactly. NPREC and RESI_RELA keep their meaning. The knobs of how a solver works (RENUM,
+/// PCENT_PIVOT, GESTION_MEMOIRE, ACCELERATION, preconditioners, ...) change its cost or make it
+/// approximate, never the exact solution we compute, so they are taken as read. STOP_SINGULIER='NON'
+/// (going on with a singular matrix) is refused.
+pub fn solver_options(a: &Args) -> Result<SolverOptions> {
     let mut opts = SolverOptions::default();
     if let Some(s) = a.fact("SOLVEUR") {
+        if s.text_if_declared("STOP_SINGULIER") == Some("NON") {
+            return Err(s.err("STOP_SINGULIER", "STOP_SINGULIER='NON' is not supported yet"));
+        }
         if let Some(n) = s.int("NPREC") {
             opts.nprec = n as i32;
         }
         if let Some(r) = s.real("RESI_RELA") {
             opts.resi_rela = r;
         }
+        s.read_all();
     }
-    opts
+    Ok(opts)
 }
 
 /// Solve, turning a singular matrix into a message naming the unknowns.

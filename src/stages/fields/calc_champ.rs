@@ -215,11 +215,7 @@ pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             wanted.push(o);
         }
     }
-    for kw in ["ENERGIE", "FORCE", "VARI_INTERNE", "ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"] {
-        if a.given(kw) {
-            return Err(a.err(kw, "not supported yet"));
-        }
-    }
+    a.refuse(&["ENERGIE", "FORCE", "VARI_INTERNE", "ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"])?;
     let (model, chmat, mut steps) = {
         let r = rc.result()?;
         let chmat = r.material.clone().ok_or_else(|| a.err("RESULTAT", "the result has no material field"))?;

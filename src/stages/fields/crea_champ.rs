@@ -152,7 +152,7 @@ fn extr(a: &Args) -> Result<FieldData> {
     } else {
         let kw = ["FREQ", "NUME_MODE", "NOEUD_CMP", "NOM_CAS", "ANGLE"]
             .into_iter()
-            .find(|k| a.given(k))
+            .find(|k| a.declares(k) && a.given(k))
             .unwrap_or("NUME_ORDRE");
         return Err(a.err(kw, "not supported yet"));
     };

@@ -185,11 +185,7 @@ pub fn modi_repere(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     if a.given("CHAM_GD") {
         return Err(a.err("CHAM_GD", "not supported yet (RESULTAT is)"));
     }
-    for kw in ["LIST_ORDRE", "NUME_MODE", "NOEUD_CMP", "NOM_CAS", "FREQ", "LIST_FREQ", "LIST_INST"] {
-        if a.given(kw) {
-            return Err(a.err(kw, "not supported yet"));
-        }
-    }
+    a.refuse(&["LIST_ORDRE", "NUME_MODE", "NOEUD_CMP", "NOM_CAS", "FREQ", "LIST_FREQ", "LIST_INST"])?;
     let repere = a.req_text("REPERE")?.to_string();
     if !matches!(repere.as_str(), "UTILISATEUR" | "CYLINDRIQUE") {
         return Err(a.err("REPERE", format!("REPERE='{repere}' is not supported yet (UTILISATEUR, CYLINDRIQUE are)")));

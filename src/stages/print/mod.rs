@@ -42,7 +42,7 @@ pub fn list_of(occ: &Args, kw: &str) -> Result<Option<Vec<f64>>> {
 /// INST, LIST_INST; all steps by default), in the result's order.
 pub fn selected_steps<'r>(r: &'r ResultData, occ: &Args, name: &str) -> Result<Vec<&'r Step>> {
     for kw in ["NUME_MODE", "NOEUD_CMP", "NOM_CAS", "ANGLE", "FREQ", "LIST_FREQ"] {
-        if occ.has(kw) {
+        if occ.has_if_declared(kw) {
             return Err(occ.err(kw, format!("{kw} is not supported yet (only NUME_ORDRE and INST select steps)")));
         }
     }

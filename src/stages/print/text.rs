@@ -52,10 +52,16 @@ fn print_occurrence(occ: &Args, out: &mut String) -> Result<()> {
     let model = r.model.model()?;
     let mesh = model.current_mesh();
     let mesh_name = model.mesh_concept.label();
-    let restrict_nodes =
-        if occ.has("GROUP_NO") || occ.has("NOEUD") { Some(select_nodes(&mesh, occ, &mesh_name)?) } else { None };
-    let restrict_cells =
-        if occ.has("GROUP_MA") || occ.has("MAILLE") { Some(select_cells(&mesh, occ, &mesh_name)?) } else { None };
+    let restrict_nodes = if occ.has_if_declared("GROUP_NO") || occ.has_if_declared("NOEUD") {
+        Some(select_nodes(&mesh, occ, &mesh_name)?)
+    } else {
+        None
+    };
+    let restrict_cells = if occ.has_if_declared("GROUP_MA") || occ.has_if_declared("MAILLE") {
+        Some(select_cells(&mesh, occ, &mesh_name)?)
+    } else {
+        None
+    };
     let orders = occ.ints("NUME_ORDRE");
     let insts = occ.reals("INST");
     let cmps = occ.texts("NOM_CMP");

@@ -10,7 +10,7 @@ use crate::diag::{Error, Result};
 use crate::solve;
 use crate::stages::core::assembly::{assemble, System};
 use crate::stages::core::newton::{
-    inf_norm, instants, newton, refuse_unsupported_options, Converged, Convergence, NewtonStep,
+    inf_norm, instants, newton, newton_note, refuse_unsupported_options, Converged, Convergence, NewtonStep,
 };
 use crate::stages::core::problem::problem;
 use crate::stages::core::solver::{solve_reduced, solver_options, step_fields};
@@ -25,6 +25,7 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     a.refuse(&["CONTACT", "SCHEMA_THM"])?;
     refuse_unsupported_options(a)?;
     for occ in a.facts("COMPORTEMENT") {
+        crate::stages::core::newton::closed_form_behaviour(occ)?;
         let rel = occ.text("RELATION").unwrap_or("ELAS");
         if rel != "ELAS" {
             return Err(occ.err("RELATION", format!("RELATION='{rel}' is not supported yet")));
@@ -46,7 +47,7 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let chmat = a.req_concept("CHAM_MATER")?;
     let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
     let times = instants(a)?;
-    let opts = solver_options(a);
+    let opts = solver_options(a)?;
     let nfull = p.numbering.ndofs();
     let mut u = vec![0.0; nfull];
     let mut steps = vec![Step { nume_ordre: 0, inst: times[0], fields: step_fields(&p, &u, true)? }];
@@ -71,8 +72,9 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         log.push_str(&format!("  {n:>4}  {ts:>14}  {iters:>5}  {rs:>14}\n"));
         steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(&p, &u, true)? });
     }
+    let note = newton_note(a).map(|n| n + "\n").unwrap_or_default();
     ctx.io.mess(&format!(
-        "  STAT_NON_LINE ({}, RELATION='ELAS'): {} unknowns, Newton per step:\n{log}",
+        "  STAT_NON_LINE ({}, RELATION='ELAS'): {} unknowns, Newton per step:\n{note}{log}",
         p.modelisation.name(),
         nfull
     ));

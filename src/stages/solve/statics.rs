@@ -34,7 +34,7 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let System { map, k, rhs, t_numbering, t_assembly } = assemble(a, &p, &model, inst)?;
 
     // Solve.
-    let sol = solve_reduced(a, &p, &map, &k, &rhs, &solver_options(a))?;
+    let sol = solve_reduced(a, &p, &map, &k, &rhs, &solver_options(a)?)?;
     let u = map.expand(&sol.x);
 
     // Fields.

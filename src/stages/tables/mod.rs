@@ -34,6 +34,10 @@ fn type_of(c: &Cell) -> ColType {
 // ------------------------------------------------------------------ CREA_TABLE
 
 pub fn crea_table(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    // TYPE_TABLE decides the concept type (the catalogue's); a container holds its rows as any table.
+    if let Some(t) = a.text("TYPE_TABLE").filter(|t| *t == "TABLE_FONCTION") {
+        return Err(a.err("TYPE_TABLE", format!("TYPE_TABLE='{t}' is not supported yet ('TABLE', 'TABLE_CONTAINER' are)")));
+    }
     let mut t = Table::default();
     if let Some(f) = a.fact("FONCTION") {
         let c = f.req_concept("FONCTION")?;
@@ -516,6 +520,11 @@ fn sort_table(t: &Table, paras: &[String], descending: bool, occ: &Args, name: &
 // ------------------------------------------------------------------ IMPR_TABLE
 
 pub fn impr_table(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    if a.text("IMPR_FONCTION") == Some("OUI") {
+        return Err(
+            a.err("IMPR_FONCTION", "IMPR_FONCTION='OUI' (printing the functions a table holds) is not supported yet")
+        );
+    }
     let tc = a.req_concept("TABLE")?;
     let name = tc.label();
     let mut t = tc.table()?;

@@ -44,7 +44,7 @@ pub fn test_table(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             }
             let v = verdict::type_test(tt, &nums);
             let all_int = cells.iter().all(|c| matches!(c, Cell::Int(_)));
-            if all_int && a.has("VALE_CALC_I") {
+            if all_int && a.has_if_declared("VALE_CALC_I") {
                 Scalar::I(v as i64)
             } else {
                 Scalar::R(v)

@@ -130,11 +130,7 @@ fn locate(field: &Field, k: usize, mesh: &Mesh, occ: &Args, mesh_name: &str) -> 
 }
 
 pub fn test_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    for kw in ["CARTE", "MAILLAGE", "OBJET", "GENE"] {
-        if a.given(kw) {
-            return Err(a.err(kw, "not supported yet"));
-        }
-    }
+    a.refuse(&["CARTE", "MAILLAGE", "OBJET", "GENE"])?;
     for kw in ["CHAM_NO", "CHAM_ELEM"] {
         for occ in a.facts(kw) {
             test_field(ctx, occ, kw)?;

@@ -191,9 +191,9 @@ pub fn check(ctx: &mut Ctx, occ: &Args, val: Scalar, legend: &str, title: &str) 
         (Some("OUI"), Scalar::I(i)) => Scalar::I(i.abs()),
         (_, v) => v,
     };
-    let (calc_kw, refe_kw, int) = if occ.has("VALE_CALC_I") {
+    let (calc_kw, refe_kw, int) = if occ.has_if_declared("VALE_CALC_I") {
         ("VALE_CALC_I", "VALE_REFE_I", true)
-    } else if occ.has("VALE_CALC_K") {
+    } else if occ.has_if_declared("VALE_CALC_K") {
         ("VALE_CALC_K", "VALE_REFE_K", false)
     } else if occ.has("VALE_CALC_C") || occ.has("VALE_REFE_C") {
         return Err(occ.err("VALE_CALC_C", "checks of complex values are not supported yet"));

@@ -72,6 +72,9 @@ pub fn run_log(command: &str, model: &ConceptRef, su: &Setup, el: &Elements, run
     if su.hm {
         s.push_str(&run.hm_report);
     }
+    if let Some(n) = &su.newton_note {
+        let _ = writeln!(s, "{n}");
+    }
     for p in &run.pinned {
         let _ = writeln!(s, "    null mode : {p}");
     }

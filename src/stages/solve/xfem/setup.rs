@@ -36,6 +36,8 @@ pub struct Setup {
     pub zones: Vec<Zone>,
     pub iter_cont_maxi: i64,
     pub xd: XDofs,
+    /// NEWTON's options when the file sets them, for the log.
+    pub newton_note: Option<String>,
 }
 
 impl Setup {
@@ -97,7 +99,7 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
     };
     check_behaviour(a, &modelisation, hm)?;
     let conv = Convergence::from_args(a)?;
-    let mut opts = solver_options(a);
+    let mut opts = solver_options(a)?;
     opts.method = Method::Lu;
 
     let chmat = a.req_concept("CHAM_MATER")?;
@@ -112,12 +114,32 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
         npk[z.crack] = z.packets.len();
     }
     let xd = XDofs::new(&mesh, &model_cells, &xm, md.dim(), &npk);
-    Ok(Setup { mesh, xm, model_cells, modelisation, md, hm, conv, opts, chmat, mats, zones, iter_cont_maxi, xd })
+    let newton_note = crate::stages::core::newton::newton_note(a);
+    Ok(Setup {
+        mesh,
+        xm,
+        model_cells,
+        modelisation,
+        md,
+        hm,
+        conv,
+        opts,
+        chmat,
+        mats,
+        zones,
+        iter_cont_maxi,
+        xd,
+        newton_note,
+    })
 }
 
 /// COMPORTEMENT: the elastic part of the kit; the hydraulic laws only act on eliminated unknowns.
 fn check_behaviour(a: &Args, modelisation: &str, hm: bool) -> Result<()> {
+    if !a.declares("COMPORTEMENT") {
+        return Ok(()); // MECA_STATIQUE: linear elasticity.
+    }
     for occ in a.facts("COMPORTEMENT") {
+        crate::stages::core::newton::closed_form_behaviour(occ)?;
         let rel = occ.text("RELATION").unwrap_or("ELAS");
         match (rel, hm) {
             ("ELAS", false) => {}
@@ -149,6 +171,11 @@ fn check_behaviour(a: &Args, modelisation: &str, hm: bool) -> Result<()> {
     if a.given("SCHEMA_THM") && !hm {
         return Err(a.err("SCHEMA_THM", format!("SCHEMA_THM needs a hydro-mechanical model ({modelisation} is not)")));
     }
+    // With every hydraulic unknown eliminated (`conditions`, which stops otherwise) the time scheme of
+    // the flow plays no part: the run log says so.
+    if let Some(s) = a.fact("SCHEMA_THM") {
+        s.read_all();
+    }
     Ok(())
 }
 
@@ -163,7 +190,7 @@ fn zones(
 ) -> Result<(Vec<Zone>, i64)> {
     let mut zones: Vec<Zone> = Vec::new();
     let mut iter_cont_maxi = 0;
-    if let Some(cc) = a.concept("CONTACT") {
+    if let Some(cc) = a.declares("CONTACT").then(|| a.concept("CONTACT")).flatten() {
         let d = cc.data();
         let ConceptData::Contact(Contact { zones: cz, model: cmodel, iter_cont_maxi: icm }) = &*d else {
             return Err(a.err("CONTACT", format!("{} is not a contact definition", cc.label())));
