@@ -35,7 +35,8 @@ fn run(moye: &str, type_test: &str, expected: f64) {
     }
     let mesh_path = dir.join("square.med");
     med::write_mesh(&mesh_path, &mesh, "MA").unwrap();
-    let mats: String = YOUNG.iter().enumerate().map(|(i, e)| format!("M{i} = DEFI_MATERIAU(ELAS=_F(E={e:e}, NU={NU}))\n")).collect();
+    let mats: String =
+        YOUNG.iter().enumerate().map(|(i, e)| format!("M{i} = DEFI_MATERIAU(ELAS=_F(E={e:e}, NU={NU}))\n")).collect();
     let affe: String = (0..4).map(|i| format!("_F(GROUP_MA='G{i}', MATER=M{i}), ")).collect();
     let comm = format!(
         "DEBUT()\n\

@@ -453,3 +453,38 @@ impl XfemModel {
         self.node_sets.iter().map(|s| s.len()).sum()
     }
 }
+
+/// Is the zero level set straight (flat in 3D) inside a cell? It is when the nodal values are an
+/// affine function of the nodal coordinates: the isoparametric interpolation of the level set is then
+/// that affine function on the whole cell, whatever the cell's shape. Always true for a simplex.
+/// `dim` is the space dimension; the tolerance is relative to the values' spread.
+pub fn straight_in_cell(coords: &[[f64; 3]], lsn: &[f64], dim: usize) -> bool {
+    use nalgebra::{DMatrix, DVector};
+    let n = coords.len().min(lsn.len());
+    if n <= dim + 1 {
+        return true;
+    }
+    // Least squares of lsn ≈ a·x + b over the nodes.
+    let a = DMatrix::from_fn(n, dim + 1, |i, j| if j < dim { coords[i][j] } else { 1.0 });
+    let b = DVector::from_iterator(n, lsn[..n].iter().copied());
+    let Ok(fit) = a.clone().svd(true, true).solve(&b, 1e-14) else { return false };
+    let scale = lsn[..n].iter().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    (a * fit - b).amax() <= 1e-9 * scale
+}
+
+#[cfg(test)]
+mod straight_tests {
+    use super::straight_in_cell;
+
+    #[test]
+    fn an_affine_level_set_is_straight_in_a_distorted_quad() {
+        let q = [[0.0, 0.0, 0.0], [2.0, 0.1, 0.0], [2.5, 1.7, 0.0], [-0.2, 1.0, 0.0]];
+        let affine: Vec<f64> = q.iter().map(|x| 0.3 * x[0] - 0.8 * x[1] + 0.1).collect();
+        assert!(straight_in_cell(&q, &affine, 2));
+        // A bilinear one (x·y) is not.
+        let curved: Vec<f64> = q.iter().map(|x| x[0] * x[1] - 0.5).collect();
+        assert!(!straight_in_cell(&q, &curved, 2));
+        // Three nodes always are.
+        assert!(straight_in_cell(&q[..3], &curved[..3], 2));
+    }
+}

@@ -59,6 +59,15 @@ pub fn refuse_unsupported_options(a: &Args) -> Result<()> {
     if a.text("METHODE").is_some_and(|m| m != "NEWTON") {
         return Err(a.err("METHODE", "only METHODE='NEWTON' is supported yet"));
     }
+    // ARCHIVAGE: every instant is stored; a selection of instants or fields is not supported yet.
+    if let Some(arch) = a.fact("ARCHIVAGE") {
+        for kw in ["INST", "LIST_INST", "PAS_ARCH", "CHAM_EXCLU"] {
+            if arch.declares(kw) && arch.given(kw) {
+                return Err(arch.err(kw, "selective archiving is not supported yet (every instant is stored)"));
+            }
+        }
+        arch.read_all();
+    }
     Ok(())
 }
 

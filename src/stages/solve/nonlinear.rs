@@ -35,13 +35,6 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         }
     }
     let conv = Convergence::from_args(a)?;
-    if let Some(arch) = a.fact("ARCHIVAGE") {
-        for kw in ["INST", "LIST_INST", "PAS_ARCH"] {
-            if arch.given(kw) {
-                return Err(arch.err(kw, "selective archiving is not supported yet (every instant is stored)"));
-            }
-        }
-    }
 
     let model = a.req_concept("MODELE")?;
     let chmat = a.req_concept("CHAM_MATER")?;

@@ -36,7 +36,9 @@ fn type_of(c: &Cell) -> ColType {
 pub fn crea_table(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     // TYPE_TABLE decides the concept type (the catalogue's); a container holds its rows as any table.
     if let Some(t) = a.text("TYPE_TABLE").filter(|t| *t == "TABLE_FONCTION") {
-        return Err(a.err("TYPE_TABLE", format!("TYPE_TABLE='{t}' is not supported yet ('TABLE', 'TABLE_CONTAINER' are)")));
+        return Err(
+            a.err("TYPE_TABLE", format!("TYPE_TABLE='{t}' is not supported yet ('TABLE', 'TABLE_CONTAINER' are)"))
+        );
     }
     let mut t = Table::default();
     if let Some(f) = a.fact("FONCTION") {

@@ -150,10 +150,10 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
     };
     // DECOUPE_FACETTE: the facets are always the faces of the sub-cells on
     // the interface. Code_Aster's default cuts the interface polygon of each
-    // parent on its own; on a straight interface in an affine linear cell
+    // parent on its own; where the interface is straight in a linear cell
     // both tile the same segment or polygon with flat pieces, and the facet
-    // integrals agree (docs/wtnv149.md). Quadratic cells keep the faithful
-    // SOUS_ELEMENTS only.
+    // integrals agree (docs/wtnv149.md); that is checked cell by cell below.
+    // Quadratic cells keep the faithful SOUS_ELEMENTS only.
     let mo_in = a.req_concept("MODELE_IN")?;
     let quadratic_model = {
         let m = mo_in.model()?;
@@ -186,6 +186,25 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
     let model_cells: Vec<usize> = (0..mesh.ncells())
         .filter(|&c| elements[c].as_ref().is_some_and(|e| e.role == crate::concepts::model::Role::Bulk))
         .collect();
+    if a.text("DECOUPE_FACETTE") == Some("DEFAUT") && contact == ContactKind::Mortar {
+        for (f, k) in crack_concepts.iter().zip(&cracks) {
+            for &c in k.cut_cells.iter().filter(|c| model_cells.binary_search(c).is_ok()) {
+                let coords: Vec<[f64; 3]> = mesh.cells[c].iter().map(|&n| mesh.coords[n]).collect();
+                let lsn: Vec<f64> = mesh.cells[c].iter().map(|&n| k.lsn[n]).collect();
+                if !crate::xfem::model::straight_in_cell(&coords, &lsn, mesh.dim) {
+                    return Err(a.err(
+                        "DECOUPE_FACETTE",
+                        format!(
+                            "{} is not straight in cell {}: Code_Aster's DECOUPE_FACETTE='DEFAUT' facets differ there \
+                             from the sub-cell faces; only 'SOUS_ELEMENTS' is supported yet",
+                            f.label(),
+                            mesh.cell_names[c]
+                        ),
+                    ));
+                }
+            }
+        }
+    }
     let mut lsn = Vec::new();
     let mut masters = Vec::new();
     let mut enriched = Vec::new();
