@@ -14,11 +14,94 @@ pub enum Role {
     Skin,
 }
 
+/// The modelisations AFFE_MODELE accepts (Code_Aster's MODELISATION names).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Modelling {
+    ThreeD,
+    ThreeDHm,
+    ThreeDHmd,
+    ThreeDSi,
+    ThreeDDil,
+    DPlan,
+    CPlan,
+    Axis,
+    DPlanHm,
+    DPlanHmd,
+    AxisHm,
+    AxisHmd,
+    DPlanSi,
+    AxisSi,
+}
+
+impl Modelling {
+    const ALL: [(Modelling, &'static str); 14] = [
+        (Modelling::ThreeD, "3D"),
+        (Modelling::ThreeDHm, "3D_HM"),
+        (Modelling::ThreeDHmd, "3D_HMD"),
+        (Modelling::ThreeDSi, "3D_SI"),
+        (Modelling::ThreeDDil, "3D_DIL"),
+        (Modelling::DPlan, "D_PLAN"),
+        (Modelling::CPlan, "C_PLAN"),
+        (Modelling::Axis, "AXIS"),
+        (Modelling::DPlanHm, "D_PLAN_HM"),
+        (Modelling::DPlanHmd, "D_PLAN_HMD"),
+        (Modelling::AxisHm, "AXIS_HM"),
+        (Modelling::AxisHmd, "AXIS_HMD"),
+        (Modelling::DPlanSi, "D_PLAN_SI"),
+        (Modelling::AxisSi, "AXIS_SI"),
+    ];
+
+    /// From Code_Aster's name; None for a modelisation we do not know.
+    pub fn from_name(s: &str) -> Option<Modelling> {
+        Self::ALL.iter().find(|(_, n)| *n == s).map(|(m, _)| *m)
+    }
+
+    /// Code_Aster's name.
+    pub fn name(self) -> &'static str {
+        Self::ALL.iter().find(|(m, _)| *m == self).map(|(_, n)| *n).unwrap_or("?")
+    }
+
+    /// The space dimension of its bulk elements.
+    pub fn dim(self) -> usize {
+        use Modelling::*;
+        match self {
+            ThreeD | ThreeDHm | ThreeDHmd | ThreeDSi | ThreeDDil => 3,
+            _ => 2,
+        }
+    }
+
+    /// Saturated hydro-mechanics (the _HM and _HMD variants).
+    pub fn is_hm(self) -> bool {
+        use Modelling::*;
+        matches!(self, ThreeDHm | ThreeDHmd | DPlanHm | DPlanHmd | AxisHm | AxisHmd)
+    }
+
+    /// The mechanical kernel of `fem` it computes with: the pure ones, and the skeleton of the HM
+    /// ones; None where we have no kernel (the _SI and _DIL variants).
+    pub fn mechanics(self) -> Option<crate::fem::elasticity::Modelisation> {
+        use crate::fem::elasticity::Modelisation as M;
+        use Modelling::*;
+        match self {
+            ThreeD | ThreeDHm | ThreeDHmd => Some(M::ThreeD),
+            DPlan | DPlanHm | DPlanHmd => Some(M::DPlan),
+            CPlan => Some(M::CPlan),
+            Axis | AxisHm | AxisHmd => Some(M::Axis),
+            _ => None,
+        }
+    }
+}
+
+impl std::fmt::Display for Modelling {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// The element a model assigns to one cell.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Element {
     pub phenomenon: String,
-    pub modelisation: String,
+    pub modelisation: Modelling,
     pub role: Role,
 }
 
@@ -31,16 +114,6 @@ pub struct Model {
     pub elements: Vec<Option<Element>>,
     /// MODI_MODELE_XFEM: the enrichment, cuttings and cracks.
     pub xfem: Option<Rc<crate::xfem::model::XfemModel>>,
-}
-
-/// The space dimension a modelisation works in, and whether it is one we know.
-pub fn modelisation_dim(m: &str) -> Option<usize> {
-    match m {
-        "3D" | "3D_HM" | "3D_HMD" | "3D_SI" | "3D_DIL" => Some(3),
-        "D_PLAN" | "C_PLAN" | "AXIS" | "D_PLAN_HM" | "D_PLAN_HMD" | "AXIS_HM" | "AXIS_HMD" | "D_PLAN_SI"
-        | "AXIS_SI" => Some(2),
-        _ => None,
-    }
 }
 
 /// The role of a cell type under a modelisation of dimension `dim`, or None
@@ -70,13 +143,13 @@ impl Model {
             .iter()
             .flatten()
             .filter(|e| e.role == Role::Bulk)
-            .filter_map(|e| modelisation_dim(&e.modelisation))
+            .map(|e| e.modelisation.dim())
             .max()
             .unwrap_or(self.mesh.dim)
     }
     /// The modelisations used, each once.
-    pub fn modelisations(&self) -> Vec<String> {
-        let mut v: Vec<String> = self.elements.iter().flatten().map(|e| e.modelisation.clone()).collect();
+    pub fn modelisations(&self) -> Vec<Modelling> {
+        let mut v: Vec<Modelling> = self.elements.iter().flatten().map(|e| e.modelisation).collect();
         v.sort();
         v.dedup();
         v

@@ -1,7 +1,7 @@
 //! AFFE_MODELE: the element each cell of a mesh carries. Mesh entities are resolved and checked here.
 
 use crate::catalog::args::Args;
-use crate::concepts::model::{modelisation_dim, role_of, Element, Model};
+use crate::concepts::model::{role_of, Element, Model, Modelling};
 use crate::concepts::ConceptData;
 use crate::diag::Result;
 use crate::stages::select::select_cells;
@@ -21,10 +21,11 @@ pub fn affe_modele(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         if phen != "MECANIQUE" {
             return Err(occ.err("PHENOMENE", format!("PHENOMENE='{phen}' is not supported yet")));
         }
-        let modelisation = occ.req_text("MODELISATION")?;
-        let Some(dim) = modelisation_dim(modelisation) else {
-            return Err(occ.err("MODELISATION", format!("MODELISATION='{modelisation}' is not supported yet")));
+        let name_md = occ.req_text("MODELISATION")?;
+        let Some(modelisation) = Modelling::from_name(name_md) else {
+            return Err(occ.err("MODELISATION", format!("MODELISATION='{name_md}' is not supported yet")));
         };
+        let dim = modelisation.dim();
         if occ.given("FORMULATION") {
             return Err(occ.err("FORMULATION", "not supported yet"));
         }
@@ -32,7 +33,7 @@ pub fn affe_modele(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let mut placed = 0;
         for c in cells {
             if let Some(role) = role_of(dim, mesh.cell_types[c]) {
-                elements[c] = Some(Element { phenomenon: phen.into(), modelisation: modelisation.into(), role });
+                elements[c] = Some(Element { phenomenon: phen.into(), modelisation, role });
                 placed += 1;
             }
         }
@@ -43,10 +44,10 @@ pub fn affe_modele(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             ));
         }
     }
-    let mut counts: BTreeMap<(String, &str), usize> = BTreeMap::new();
+    let mut counts: BTreeMap<(&str, &str), usize> = BTreeMap::new();
     for (c, e) in elements.iter().enumerate() {
         if let Some(e) = e {
-            *counts.entry((e.modelisation.clone(), mesh.cell_types[c].name())).or_default() += 1;
+            *counts.entry((e.modelisation.name(), mesh.cell_types[c].name())).or_default() += 1;
         }
     }
     let mut text = String::from("  model elements (modelisation, cell type, count):\n");

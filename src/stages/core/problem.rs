@@ -103,7 +103,7 @@ pub fn problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<Problem> {
     let mut bulk = Vec::new();
     for (c, e) in m.elements.iter().enumerate() {
         let Some(e) = e else { continue };
-        let Some(md) = Modelisation::from_name(&e.modelisation) else {
+        let Some(md) = e.modelisation.mechanics().filter(|_| !e.modelisation.is_hm()) else {
             return Err(Error::runtime(format!(
                 "MODELISATION='{}' is not supported yet by this command (3D, D_PLAN, C_PLAN, AXIS are)",
                 e.modelisation

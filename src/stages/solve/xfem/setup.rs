@@ -4,7 +4,7 @@
 
 use super::assemble::Zone;
 use crate::catalog::args::Args;
-use crate::concepts::model::{Contact, Material, MaterialField, Role};
+use crate::concepts::model::{Contact, Material, MaterialField, Modelling, Role};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::Result;
 use crate::fem::elasticity::Modelisation;
@@ -26,7 +26,7 @@ pub struct Setup {
     /// The bulk cells of the model.
     pub model_cells: Vec<usize>,
     /// MODELISATION as Code_Aster names it, its mechanical part, and whether it is hydro-mechanical.
-    pub modelisation: String,
+    pub modelisation: Modelling,
     pub md: Modelisation,
     pub hm: bool,
     pub conv: Convergence,
@@ -78,8 +78,8 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
     };
     let model_cells: Vec<usize> =
         (0..mesh.ncells()).filter(|&c| elements[c].as_ref().is_some_and(|e| e.role == Role::Bulk)).collect();
-    let mut modelisations: Vec<String> =
-        model_cells.iter().filter_map(|&c| elements[c].as_ref().map(|e| e.modelisation.clone())).collect();
+    let mut modelisations: Vec<Modelling> =
+        model_cells.iter().filter_map(|&c| elements[c].as_ref().map(|e| e.modelisation)).collect();
     modelisations.sort();
     modelisations.dedup();
     if modelisations.len() != 1 {
@@ -88,16 +88,14 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
             format!("several modelisations in one X-FEM model are not supported yet: {modelisations:?}"),
         ));
     }
-    let modelisation = modelisations[0].clone();
-    let (md, hm) = match modelisation.as_str() {
-        "D_PLAN" => (Modelisation::DPlan, false),
-        "C_PLAN" => (Modelisation::CPlan, false),
-        "D_PLAN_HM" => (Modelisation::DPlan, true),
-        "3D" => (Modelisation::ThreeD, false),
-        "3D_HM" => (Modelisation::ThreeD, true),
-        m => return Err(a.err("MODELE", format!("STAT_NON_LINE on an X-FEM {m} model is not supported yet"))),
+    let modelisation = modelisations[0];
+    let (md, hm) = match modelisation {
+        Modelling::DPlan | Modelling::CPlan | Modelling::ThreeD | Modelling::DPlanHm | Modelling::ThreeDHm => {
+            (modelisation.mechanics().expect("a mechanical kernel"), modelisation.is_hm())
+        }
+        m => return Err(a.err("MODELE", format!("an X-FEM {m} model is not supported yet"))),
     };
-    check_behaviour(a, &modelisation, hm)?;
+    check_behaviour(a, modelisation, hm)?;
     let conv = Convergence::from_args(a)?;
     let mut opts = solver_options(a)?;
     opts.method = Method::Lu;
@@ -134,7 +132,7 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
 }
 
 /// COMPORTEMENT: the elastic part of the kit; the hydraulic laws only act on eliminated unknowns.
-fn check_behaviour(a: &Args, modelisation: &str, hm: bool) -> Result<()> {
+fn check_behaviour(a: &Args, modelisation: Modelling, hm: bool) -> Result<()> {
     if !a.declares("COMPORTEMENT") {
         return Ok(()); // MECA_STATIQUE: linear elasticity.
     }
