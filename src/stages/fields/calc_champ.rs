@@ -7,6 +7,7 @@ use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
 use crate::mesh::{CellType, Mesh};
 use crate::stages::Ctx;
+use nalgebra::{Matrix3, Vector3};
 use std::collections::HashSet;
 
 use crate::fem::elasticity::{self, Modelisation};
@@ -18,25 +19,6 @@ pub const SIRO_COMPONENTS: [&str; 16] = [
     "SIG_NX", "SIG_NY", "SIG_NZ", "SIG_N", "SIG_TX", "SIG_TY", "SIG_TZ", "SIG_T1X", "SIG_T1Y", "SIG_T1Z", "SIG_T1",
     "SIG_T2X", "SIG_T2Y", "SIG_T2Z", "SIG_T2", "SIG_TN",
 ];
-
-pub type M3 = [[f64; 3]; 3];
-
-fn mat_vec(s: &M3, v: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|i| s[i][0] * v[0] + s[i][1] * v[1] + s[i][2] * v[2])
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
-    let l = dot(a, a).sqrt();
-    (l.is_finite() && l > 0.0).then(|| a.map(|x| x / l))
-}
 
 /// The rosette of a plane skin cell (a segment of a 2D model): its node
 /// coordinates and the mean stress tensor (SIXX, SIYY, SIZZ, SIXY) over its
@@ -52,28 +34,30 @@ pub fn rosette_2d(t: CellType, coords: &[[f64; 3]], sig: [f64; 4]) -> Option<[f6
             }
         }
     }
-    let t1 = unit(t1)?;
-    let n = unit(cross(t1, [0.0, 0.0, 1.0]))?;
-    let t2 = cross(n, t1);
-    let s: M3 = [[sig[0], sig[3], 0.0], [sig[3], sig[1], 0.0], [0.0, 0.0, sig[2]]];
-    let (sn, st1, st2) = (mat_vec(&s, n), mat_vec(&s, t1), mat_vec(&s, t2));
+    // A zero or non-finite tangent: a degenerate segment.
+    let unit = |v: Vector3<f64>| v.try_normalize(0.0).filter(|u| u.iter().all(|x| x.is_finite()));
+    let t1 = unit(Vector3::from(t1))?;
+    let n = unit(t1.cross(&Vector3::z()))?;
+    let t2 = n.cross(&t1);
+    let s = Matrix3::new(sig[0], sig[3], 0.0, sig[3], sig[1], 0.0, 0.0, 0.0, sig[2]);
+    let (sn, st1, st2) = (s * n, s * t1, s * t2);
     Some([
         sn[0],
         sn[1],
         sn[2],
-        dot(n, sn),
+        n.dot(&sn),
         st1[0],
         st1[1],
         st1[2],
         st1[0],
         st1[1],
         st1[2],
-        dot(t1, st1),
+        t1.dot(&st1),
         st2[0],
         st2[1],
         st2[2],
-        dot(t2, st2),
-        dot(t1, sn),
+        t2.dot(&st2),
+        t1.dot(&sn),
     ])
 }
 
@@ -146,36 +130,8 @@ const SIEQ_COMPONENTS: [&str; 8] = ["VMIS", "TRESCA", "PRIN_1", "PRIN_2", "PRIN_
 /// rounding even for nearly equal eigenvalues).
 fn principal(s: &[f64]) -> [f64; 3] {
     let (xz, yz) = if s.len() >= 6 { (s[4], s[5]) } else { (0.0, 0.0) };
-    let mut a = [[s[0], s[3], xz], [s[3], s[1], yz], [xz, yz, s[2]]];
-    for _ in 0..50 {
-        let off = a[0][1].abs() + a[0][2].abs() + a[1][2].abs();
-        let scale = a[0][0].abs() + a[1][1].abs() + a[2][2].abs() + off;
-        if off <= f64::EPSILON * 1e-3 * scale.max(f64::MIN_POSITIVE) {
-            break;
-        }
-        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
-            if a[p][q] == 0.0 {
-                continue;
-            }
-            let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-            let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-            let t = if theta == 0.0 { 1.0 } else { t };
-            let c = 1.0 / (t * t + 1.0).sqrt();
-            let sn = t * c;
-            // A <- Jᵀ A J with the rotation in the (p, q) plane.
-            for row in a.iter_mut() {
-                let (akp, akq) = (row[p], row[q]);
-                row[p] = c * akp - sn * akq;
-                row[q] = sn * akp + c * akq;
-            }
-            let (rp, rq) = (a[p], a[q]);
-            for k in 0..3 {
-                a[p][k] = c * rp[k] - sn * rq[k];
-                a[q][k] = sn * rp[k] + c * rq[k];
-            }
-        }
-    }
-    let mut e = [a[0][0], a[1][1], a[2][2]];
+    let m = Matrix3::new(s[0], s[3], xz, s[3], s[1], yz, xz, yz, s[2]);
+    let mut e: [f64; 3] = m.symmetric_eigenvalues().into();
     e.sort_by(|x, y| x.total_cmp(y));
     e
 }

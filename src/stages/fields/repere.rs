@@ -28,25 +28,11 @@ use crate::diag::Result;
 use crate::mesh::Mesh;
 use crate::stages::select::select_nodes;
 use crate::stages::Ctx;
+use nalgebra::{Matrix3, Vector3};
 
-type Mat3 = [[f64; 3]; 3];
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn normalize(a: [f64; 3]) -> ([f64; 3], f64) {
-    let l = dot(a, a).sqrt();
-    if l > 0.0 {
-        ([a[0] / l, a[1] / l, a[2] / l], l)
-    } else {
-        (a, 0.0)
-    }
-}
+/// A frame: its rows are the axes.
+type Mat3 = Matrix3<f64>;
+type V3 = Vector3<f64>;
 
 /// Code_Aster's `matrot`: the rows of the result are the axes of the frame
 /// reached by the nautical angles (radians).
@@ -54,60 +40,54 @@ pub fn nautical(alpha: f64, beta: f64, gamma: f64) -> Mat3 {
     let (sa, ca) = alpha.sin_cos();
     let (sb, cb) = beta.sin_cos();
     let (sg, cg) = gamma.sin_cos();
-    [
-        [cb * ca, cb * sa, -sb],
-        [sg * sb * ca - cg * sa, cg * ca + sg * sb * sa, sg * cb],
-        [sg * sa + cg * sb * ca, cg * sb * sa - ca * sg, cg * cb],
-    ]
+    Matrix3::new(
+        cb * ca,
+        cb * sa,
+        -sb,
+        sg * sb * ca - cg * sa,
+        cg * ca + sg * sb * sa,
+        sg * cb,
+        sg * sa + cg * sb * ca,
+        cg * sb * sa - ca * sg,
+        cg * cb,
+    )
+}
+
+/// The unit vector along `v`, or None for a zero (or non-finite) one.
+fn unit(v: V3) -> Option<V3> {
+    v.try_normalize(0.0).filter(|u| u.iter().all(|x| x.is_finite()))
 }
 
 /// The nautical angles of the frame whose X axis is `vx` and whose Y axis is
 /// in the plane of `vx`, `vy` (Code_Aster's `angvxy`), in radians.
 fn angles_of(vx: [f64; 3], vy: [f64; 3]) -> Option<[f64; 3]> {
-    let (x, lx) = normalize(vx);
-    if lx == 0.0 {
-        return None;
-    }
+    let x = unit(V3::from(vx))?;
     let alpha = if x[0] == 0.0 && x[1] == 0.0 { 0.0 } else { x[1].atan2(x[0]) };
     let beta = -x[2].clamp(-1.0, 1.0).asin();
     // Y axis of the frame reached by alpha and beta, then gamma turns it to vy.
     let p = nautical(alpha, beta, 0.0);
-    let y = [vy[0] - dot(vy, x) * x[0], vy[1] - dot(vy, x) * x[1], vy[2] - dot(vy, x) * x[2]];
-    let (y, ly) = normalize(y);
-    if ly == 0.0 {
-        return None;
-    }
-    let gamma = dot(y, p[2]).atan2(dot(y, p[1]));
+    let vy = V3::from(vy);
+    let y = unit(vy - vy.dot(&x) * x)?;
+    let gamma = y.dot(&p.row(2).transpose()).atan2(y.dot(&p.row(1).transpose()));
     Some([alpha, beta, gamma])
 }
 
 /// `P S Pᵀ` for the symmetric tensor `s`.
 pub fn rotate_tensor(p: &Mat3, s: &Mat3) -> Mat3 {
-    let mut out = [[0.0; 3]; 3];
-    for m in 0..3 {
-        for n in 0..3 {
-            let mut v = 0.0;
-            for l in 0..3 {
-                for k in 0..3 {
-                    v += p[m][l] * s[l][k] * p[n][k];
-                }
-            }
-            out[m][n] = v;
-        }
-    }
-    out
+    p * s * p.transpose()
 }
 
 /// The cylindrical frame (rows e_r, e_z, e_θ) at point `x`, or None on the axis.
 pub fn cylindrical_frame(x: [f64; 3], origin: [f64; 3], axis: [f64; 3]) -> Option<Mat3> {
-    let d = [x[0] - origin[0], x[1] - origin[1], x[2] - origin[2]];
-    let h = dot(d, axis);
-    let (r, l) = normalize([d[0] - h * axis[0], d[1] - h * axis[1], d[2] - h * axis[2]]);
-    if l < 1e-6 {
+    let axis = V3::from(axis);
+    let d = V3::from(x) - V3::from(origin);
+    let radial = d - d.dot(&axis) * axis;
+    if radial.norm() < 1e-6 {
         return None;
     }
-    let (t, _) = normalize(cross(axis, r));
-    Some([r, axis, t])
+    let r = radial.normalize();
+    let t = unit(axis.cross(&r))?;
+    Some(Matrix3::from_rows(&[r.transpose(), axis.transpose(), t.transpose()]))
 }
 
 /// Kind of a MODI_CHAM occurrence.
@@ -140,16 +120,16 @@ enum Frame {
 /// Transform the values `v` (in the order of the kind's components) with P.
 fn apply(kind: Kind, p: &Mat3, v: &[f64]) -> Vec<f64> {
     match kind {
-        Kind::Vect2 => vec![p[0][0] * v[0] + p[0][1] * v[1], p[1][0] * v[0] + p[1][1] * v[1]],
-        Kind::Vect3 => (0..3).map(|m| p[m][0] * v[0] + p[m][1] * v[1] + p[m][2] * v[2]).collect(),
+        Kind::Vect2 => vec![p[(0, 0)] * v[0] + p[(0, 1)] * v[1], p[(1, 0)] * v[0] + p[(1, 1)] * v[1]],
+        Kind::Vect3 => (p * V3::new(v[0], v[1], v[2])).iter().copied().collect(),
         Kind::Tens2 | Kind::Tens3 => {
             let (xy, xz, yz) = if kind == Kind::Tens2 { (v[3], 0.0, 0.0) } else { (v[3], v[4], v[5]) };
-            let s = [[v[0], xy, xz], [xy, v[1], yz], [xz, yz, v[2]]];
+            let s = Matrix3::new(v[0], xy, xz, xy, v[1], yz, xz, yz, v[2]);
             let l = rotate_tensor(p, &s);
             if kind == Kind::Tens3 {
-                vec![l[0][0], l[1][1], l[2][2], l[0][1], l[0][2], l[1][2]]
+                vec![l[(0, 0)], l[(1, 1)], l[(2, 2)], l[(0, 1)], l[(0, 2)], l[(1, 2)]]
             } else {
-                vec![l[0][0], l[1][1], l[2][2], l[0][1]]
+                vec![l[(0, 0)], l[(1, 1)], l[(2, 2)], l[(0, 1)]]
             }
         }
     }
@@ -159,9 +139,9 @@ fn apply(kind: Kind, p: &Mat3, v: &[f64]) -> Vec<f64> {
 /// YY, ZZ and the (1,3) term of the frame (e_r, e_z, e_θ)).
 fn apply_cyl(kind: Kind, p: &Mat3, v: &[f64]) -> Vec<f64> {
     if kind == Kind::Tens2 {
-        let s = [[v[0], v[3], 0.0], [v[3], v[1], 0.0], [0.0, 0.0, v[2]]];
+        let s = Matrix3::new(v[0], v[3], 0.0, v[3], v[1], 0.0, 0.0, 0.0, v[2]);
         let l = rotate_tensor(p, &s);
-        vec![l[0][0], l[1][1], l[2][2], l[0][2]]
+        vec![l[(0, 0)], l[(1, 1)], l[(2, 2)], l[(0, 2)]]
     } else {
         apply(kind, p, v)
     }
@@ -329,11 +309,10 @@ pub fn modi_repere(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                         if z.len() != 3 {
                             return Err(af.err("AXE_Z", "a 3D cylindrical frame needs AXE_Z"));
                         }
-                        let (axis, l) = normalize([z[0], z[1], z[2]]);
-                        if l == 0.0 {
+                        let Some(axis) = unit(V3::new(z[0], z[1], z[2])) else {
                             return Err(af.err("AXE_Z", "AXE_Z is zero"));
-                        }
-                        Frame::Cylinder { origin: [o[0], o[1], o[2]], axis }
+                        };
+                        Frame::Cylinder { origin: [o[0], o[1], o[2]], axis: axis.into() }
                     } else {
                         if o.len() != 2 {
                             text.push_str(" <A> MODI_REPERE: in 2D ORIGINE takes two coordinates\n");
@@ -445,7 +424,7 @@ mod tests {
         assert!(close(w[3], -(sx - sy) / 2.0 * s + txy * c));
         // β = 90° turns Z onto X' counted the other way: X' = -Z... (matrot: row 1 = (0, 0, -1)).
         let p = nautical(0.0, std::f64::consts::FRAC_PI_2, 0.0);
-        assert!(close(p[0][2], -1.0));
+        assert!(close(p[(0, 2)], -1.0));
     }
 
     #[test]
@@ -455,10 +434,10 @@ mod tests {
         let g = angles_of(vx, vy).unwrap();
         let p = nautical(g[0], g[1], g[2]);
         let s = 3f64.sqrt();
-        assert!(p[0].iter().all(|&v| close(v, 1.0 / s)));
+        assert!(p.row(0).iter().all(|&v| close(v, 1.0 / s)));
         let y = [-1.0 / 2f64.sqrt(), 1.0 / 2f64.sqrt(), 0.0];
         for k in 0..3 {
-            assert!((p[1][k] - y[k]).abs() < 1e-12);
+            assert!((p[(1, k)] - y[k]).abs() < 1e-12);
         }
     }
 
@@ -472,10 +451,10 @@ mod tests {
             |x: &[f64]| x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + 2.0 * (x[3] * x[3] + x[4] * x[4] + x[5] * x[5]);
         assert!(close(frob(&w), frob(&v)));
         // e_z row is the axis, e_θ = e_z × e_r.
-        assert!(close(p[1][1], 0.6) && close(p[1][2], 0.8));
-        let t = cross(p[1], p[0]);
+        assert!(close(p[(1, 1)], 0.6) && close(p[(1, 2)], 0.8));
+        let t = p.row(1).cross(&p.row(0));
         for k in 0..3 {
-            assert!(close(p[2][k], t[k]));
+            assert!(close(p[(2, k)], t[k]));
         }
     }
 }
