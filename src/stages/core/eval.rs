@@ -25,14 +25,19 @@ pub fn eval_at(c: &ConceptRef, x: &[f64; 3], inst: f64) -> Result<f64> {
             }
         }
     };
-    match &*c.data() {
-        ConceptData::Function(f) if f.nom_para == "TOUTPARA" => f.eval(0.0),
-        ConceptData::Function(f) => f.eval(arg(&f.nom_para)?),
-        ConceptData::Nappe(n) => n.eval(arg(&n.nom_para)?, arg(&n.nom_para_fonc)?),
-        ConceptData::Formula(f) => {
-            let vals: Vec<f64> = f.nom_para.iter().map(|p| arg(p)).collect::<Result<_>>()?;
-            f.eval(&vals)
+    eval_named(c, &arg)
+}
+
+/// A function, nappe or formula evaluated with its parameters looked up by name.
+pub fn eval_named(f: &ConceptRef, arg: &dyn Fn(&str) -> Result<f64>) -> Result<f64> {
+    match &*f.data() {
+        ConceptData::Function(g) if g.nom_para == "TOUTPARA" => g.eval(0.0),
+        ConceptData::Function(g) => g.eval(arg(&g.nom_para)?),
+        ConceptData::Nappe(g) => g.eval(arg(&g.nom_para)?, arg(&g.nom_para_fonc)?),
+        ConceptData::Formula(g) => {
+            let vals: Vec<f64> = g.nom_para.iter().map(|p| arg(p)).collect::<Result<_>>()?;
+            g.eval(&vals)
         }
-        _ => Err(Error::runtime(format!("{} ({}) is not a function", c.label(), c.kind()))),
+        _ => Err(Error::runtime(format!("{} ({}) is not a function", f.label(), f.kind()))),
     }
 }

@@ -13,6 +13,7 @@ use crate::catalog::args::Args;
 use crate::concepts::result::{Field, FieldData};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
+use crate::stages::core::eval::eval_named;
 use crate::stages::select::{select_cells, select_nodes};
 use crate::stages::Ctx;
 
@@ -169,20 +170,6 @@ fn extr(a: &Args) -> Result<FieldData> {
     }
     let mesh_concept = r.model.model()?.mesh_concept.clone();
     Ok(FieldData { mesh_concept, field: field.clone(), functions: None })
-}
-
-/// A function, nappe or formula evaluated with its parameters looked up by name.
-fn eval_named(f: &ConceptRef, arg: &dyn Fn(&str) -> Result<f64>) -> Result<f64> {
-    match &*f.data() {
-        ConceptData::Function(g) if g.nom_para == "TOUTPARA" => g.eval(0.0),
-        ConceptData::Function(g) => g.eval(arg(&g.nom_para)?),
-        ConceptData::Nappe(g) => g.eval(arg(&g.nom_para)?, arg(&g.nom_para_fonc)?),
-        ConceptData::Formula(g) => {
-            let vals: Vec<f64> = g.nom_para.iter().map(|p| arg(p)).collect::<Result<_>>()?;
-            g.eval(&vals)
-        }
-        _ => Err(Error::runtime(format!("{} ({}) is not a function", f.label(), f.kind()))),
-    }
 }
 
 /// Evaluate the functions of a field by cell (None: the zero function) with
