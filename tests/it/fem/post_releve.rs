@@ -20,9 +20,7 @@ fn sxx(e: f64) -> f64 {
 }
 
 fn run(moye: &str, type_test: &str, expected: f64) {
-    let dir = std::env::temp_dir().join(format!("aster-rs-releve-{}-{moye}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch!(moye);
     let mut mesh = box_mesh(CellType::Quad4, &[2, 2], &[2.0, 2.0]).unwrap();
     let centre = (0..mesh.nnodes())
         .find(|&n| (mesh.coords[n][0] - 1.0).abs() < 1e-12 && (mesh.coords[n][1] - 1.0).abs() < 1e-12)

@@ -9,21 +9,11 @@
 //! checked against the analytic solution of the case. When Python's `gmsh`
 //! module is installed the file is also opened with it.
 
+use crate::common::*;
 use aster::med;
 use aster::mesh::{CellType, Mesh};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-fn aster() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_aster"))
-}
-
-fn scratch(test: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aster-rs-printformats-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 fn text(o: &Output) -> String {
     format!("stdout:\n{}\nstderr:\n{}", String::from_utf8_lossy(&o.stdout), String::from_utf8_lossy(&o.stderr))
@@ -254,7 +244,7 @@ fn gmsh_python_check(pos: &Path, views: &[(&str, usize)]) {
 
 #[test]
 fn gmsh_default_scalar_views_of_a_result() {
-    let dir = scratch("scalar");
+    let dir = scratch!("scalar");
     let r = run(&dir, "scal", r#"IMPR_RESU(FORMAT="GMSH", UNITE=82, RESU=_F(RESULTAT=RESU))"#);
     assert!(r.ok, "{}", r.out);
     // Cell fields are not written, with an alarm.
@@ -300,7 +290,7 @@ fn gmsh_default_scalar_views_of_a_result() {
 
 #[test]
 fn gmsh_version_1_0_writes_a_vector_on_triangles() {
-    let dir = scratch("v10");
+    let dir = scratch!("v10");
     let r = run(
         &dir,
         "v10",
@@ -344,7 +334,7 @@ fn gmsh_version_1_0_writes_a_vector_on_triangles() {
 
 #[test]
 fn gmsh_vect_2d_on_a_group_of_cells() {
-    let dir = scratch("vect2d");
+    let dir = scratch!("vect2d");
     let r = run(
         &dir,
         "vect",
@@ -371,7 +361,7 @@ fn gmsh_vect_2d_on_a_group_of_cells() {
 
 #[test]
 fn gmsh_refuses_what_it_does_not_write() {
-    let dir = scratch("refuse");
+    let dir = scratch!("refuse");
     let cases = [
         ("maillage", r#"IMPR_RESU(FORMAT="GMSH", UNITE=82, RESU=_F(MAILLAGE=MA))"#, "MAILLAGE"),
         (
@@ -399,7 +389,7 @@ fn gmsh_refuses_what_it_does_not_write() {
 
 #[test]
 fn agraf_is_tableau_with_marked_empty_cells() {
-    let dir = scratch("agraf");
+    let dir = scratch!("agraf");
     let comm = dir.join("t.comm");
     std::fs::write(
         &comm,
@@ -436,20 +426,10 @@ FIN()
 
 // ------------------------------------------------------------ legacy cases
 
-fn astest(file: &str) -> Option<PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/astest").join(file);
-    if p.exists() {
-        Some(p)
-    } else {
-        println!("SKIP: {} is absent", p.display());
-        None
-    }
-}
-
 #[test]
 fn ssnv173f_runs_its_gmsh_and_agraf_prints() {
     let Some(export) = astest("ssnv173f.export") else { return };
-    let dir = scratch("ssnv173f");
+    let dir = scratch!("ssnv173f");
     let pos = dir.join("res.pos");
     let o = aster()
         .arg("run")
@@ -473,7 +453,7 @@ fn ssnv173f_runs_its_gmsh_and_agraf_prints() {
 #[test]
 fn ssnv173b_runs_its_agraf_prints() {
     let Some(export) = astest("ssnv173b.export") else { return };
-    let dir = scratch("ssnv173b");
+    let dir = scratch!("ssnv173b");
     let o = aster().arg("run").arg(&export).arg("--out").arg(&dir).arg("-q").output().unwrap();
     let mess = std::fs::read_to_string(dir.join("ssnv173b.mess")).unwrap_or_default();
     assert!(mess.matches("FORMAT=\"AGRAF\"").count() >= 2, "{}\n{mess}", text(&o));

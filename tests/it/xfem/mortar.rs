@@ -12,8 +12,7 @@ use std::collections::BTreeSet;
 use std::path::Path;
 use std::rc::Rc;
 
-mod common;
-use common::*;
+use crate::common::*;
 
 /// Per crack: its cut edges and packets, plus the enrichment status of each.
 struct Case {

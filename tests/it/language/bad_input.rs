@@ -1,20 +1,13 @@
 //! Every class of bad input gives a located message and a non-zero exit,
 //! and leaves no half-written result behind.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 struct Run {
     code: i32,
     stderr: String,
     mess: String,
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aster-bad-input-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
 }
 
 fn run_in(dir: &Path, file: &str, args: &[&str]) -> Run {
@@ -35,7 +28,7 @@ fn run_in(dir: &Path, file: &str, args: &[&str]) -> Run {
 
 /// Run `src` as bad.comm; assert the exit code, the located message and the diagnostic.
 fn expect(name: &str, src: &str, located: &str, diagnostic: &str) {
-    let dir = scratch(name);
+    let dir = scratch!(name);
     std::fs::write(dir.join("bad.comm"), src).unwrap();
     let r = run_in(&dir, "bad.comm", &[]);
     assert_eq!(r.code, 2, "{name}: exit code; stderr: {}", r.stderr);
@@ -166,7 +159,7 @@ fn missing_unit_file() {
         "<F>_ERROR",
     );
     // An .export naming a data file that does not exist stops before running.
-    let dir = scratch("unit-export");
+    let dir = scratch!("unit-export");
     std::fs::write(dir.join("case.comm"), "DEBUT()\nT = LIRE_TABLE(UNITE=31)\nFIN()\n").unwrap();
     std::fs::write(dir.join("case.export"), "P time_limit 60\nF comm case.comm D 1\nF libr missing.31 D 31\n").unwrap();
     let r = run_in(&dir, "case.export", &[]);
@@ -176,7 +169,7 @@ fn missing_unit_file() {
 
 #[test]
 fn failed_run_leaves_no_result_file() {
-    let dir = scratch("atomic");
+    let dir = scratch!("atomic");
     let src = "DEBUT()\nT = CREA_TABLE(LISTE=_F(PARA='A', LISTE_I=(1, 2)))\nIMPR_TABLE(TABLE=T, UNITE=38)\nX = undefined_name\n";
     std::fs::write(dir.join("case.comm"), src).unwrap();
     let target = dir.join("table.txt");

@@ -10,8 +10,7 @@ use aster::xfem::topose::{topose, CrackInCell, Cutting};
 use std::collections::{BTreeMap, BTreeSet};
 use std::rc::Rc;
 
-mod common;
-use common::*;
+use crate::common::*;
 
 struct Case {
     mesh: Rc<Mesh>,

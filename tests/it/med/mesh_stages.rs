@@ -6,36 +6,12 @@
 //! meshes are read in place from `../shared/astest` through `--unit`
 //! mappings (tests that need them print a message and pass when absent).
 
+use crate::common::*;
 use aster::med;
 use aster::mesh::generate::box_mesh;
 use aster::mesh::{CellType, Mesh};
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn aster() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_aster"))
-}
-
-fn scratch(test: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aster-rs-meshstages-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn astest(file: &str) -> Option<PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/astest").join(file);
-    if p.exists() {
-        Some(p)
-    } else {
-        println!("SKIP: {} is absent", p.display());
-        None
-    }
-}
-
-fn text(o: &Output) -> (String, String) {
-    (String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
-}
+use std::path::Path;
+use std::process::Output;
 
 /// Run a command file with unit mappings; returns the process output.
 fn run_comm(dir: &Path, name: &str, src: &str, units: &[(i64, &Path)]) -> Output {
@@ -97,7 +73,7 @@ fn listed(dir: &Path, name: &str, header: &str) -> Vec<String> {
 
 #[test]
 fn mesh_box_and_info() {
-    let dir = scratch("box");
+    let dir = scratch!("box");
     let out = dir.join("q4.med");
     let o = aster()
         .args(["mesh", "box", "--cell", "QUAD4", "--n", "4,3", "--size", "2,1.5", "-o"])
@@ -137,7 +113,7 @@ fn mesh_box_and_info() {
 
 #[test]
 fn defi_group_on_a_generated_box() {
-    let dir = scratch("defi");
+    let dir = scratch!("defi");
     let src_mesh = dir.join("h20.med");
     let mesh = box_mesh(CellType::Hexa20, &[2, 3, 2], &[1.0, 1.5, 2.0]).unwrap();
     med::write_mesh(&src_mesh, &mesh, "BOX").unwrap();
@@ -216,7 +192,7 @@ FIN()
 
 #[test]
 fn noeud_ordo_on_a_quad8_box() {
-    let dir = scratch("ordo");
+    let dir = scratch!("ordo");
     let src_mesh = dir.join("q8.med");
     let mesh = box_mesh(CellType::Quad8, &[4, 2], &[4.0, 1.0]).unwrap();
     med::write_mesh(&src_mesh, &mesh, "MAIL").unwrap();
@@ -255,7 +231,7 @@ FIN()
 
 #[test]
 fn astest_defi_group_options() {
-    let dir = scratch("astest");
+    let dir = scratch!("astest");
     // wtna113d: CREA_GROUP_MA copies, TOUT, NOEUD_ORDO from N3 to N4.
     if let Some(mm) = astest("wtna113a.mmed") {
         let mesh = med::read_mesh(&mm, None).unwrap();
@@ -354,7 +330,7 @@ FIN()
 
 #[test]
 fn diff_against_itself_and_a_perturbed_copy() {
-    let dir = scratch("diff");
+    let dir = scratch!("diff");
     let mesh = box_mesh(CellType::Quad4, &[3, 2], &[3.0, 2.0]).unwrap();
     let nn = mesh.nnodes();
     let values =
@@ -409,7 +385,7 @@ fn run_fail(dir: &Path, name: &str, src: &str, units: &[(i64, &Path)]) -> String
 
 #[test]
 fn bad_input_is_a_located_error() {
-    let dir = scratch("bad");
+    let dir = scratch!("bad");
     let good = dir.join("good.med");
     med::write_mesh(&good, &box_mesh(CellType::Quad4, &[2, 2], &[1.0, 1.0]).unwrap(), "MAIL").unwrap();
     let bytes = std::fs::read(&good).unwrap();

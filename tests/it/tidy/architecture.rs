@@ -6,12 +6,9 @@
 //! its command families. A family uses only the floor (never another family), the floor never uses a
 //! family, and every command's schema file and stage are of the same family.
 
+use crate::common::*;
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use std::path::Path;
 
 /// Every `.rs` file below `dir`, with its module path (`["stages", "print", "med"]`).
 fn sources(dir: &Path) -> Vec<(Vec<String>, String)> {

@@ -5,29 +5,13 @@
 //! measures integrated on the facets equal the exact lengths and areas.
 //! Every test prints a message and passes when `../shared` is absent.
 
+use crate::common::*;
 use aster::runner::{self, export::Dir, RunOptions};
-use std::path::{Path, PathBuf};
-
-fn astest(file: &str) -> Option<PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/astest").join(file);
-    if p.exists() {
-        Some(p)
-    } else {
-        println!("SKIP: {} is absent", p.display());
-        None
-    }
-}
-
-fn out_dir(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aster-rs-wtnv149-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use std::path::Path;
 
 /// Run an export; returns (OK count, NOOK count, skipped, diagnostic, message file text).
 fn run(export: &Path, tag: &str) -> (usize, usize, usize, String, String) {
-    let out = out_dir(tag);
+    let out = scratch!(tag);
     let o = runner::run_export(export, &RunOptions { out_dir: Some(out.clone()), units: Vec::new(), echo: false });
     let mess = o.mess.as_ref().and_then(|p| std::fs::read_to_string(p).ok()).unwrap_or_default();
     let ok = o.records.iter().filter(|r| r.ok == Some(true)).count();
@@ -120,7 +104,7 @@ fn wtnv149a_solves_as_many_unknowns_as_the_d_plan_scene() {
     let (_, _, _, diag, hm) = run(&astest("wtnv149a.export").unwrap(), "hm");
     assert_eq!(diag, "OK", "{hm}");
     let src = std::fs::read_to_string(&comm).unwrap();
-    let out = out_dir("dplan");
+    let out = scratch!("dplan");
     let file = out.join("wtnv149a_dplan.comm");
     std::fs::write(&file, d_plan_variant(&src)).unwrap();
     let o = runner::run_comm(

@@ -34,14 +34,6 @@ fn med_files(dir: &Path) -> Vec<PathBuf> {
     v
 }
 
-/// A fresh scratch directory for one test.
-fn scratch(test: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aster-rs-med-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 fn have_python_med() -> bool {
     let ok = Command::new("/usr/bin/python3")
         .args(["-c", "import med.medfile"])
@@ -216,7 +208,7 @@ fn astest_meshes_load_and_agree_with_python_med() {
 #[test]
 fn astest_meshes_roundtrip() {
     let Some(dir) = astest_dir() else { return };
-    let tmp = scratch("roundtrip");
+    let tmp = scratch!("roundtrip");
     let py = have_python_med();
     let mdump = have_tool("mdump");
     let conf = have_tool("medconforme");
@@ -269,7 +261,7 @@ fn all_types_mesh() -> Mesh {
 
 #[test]
 fn all_cell_types_roundtrip_in_code_aster_order() {
-    let tmp = scratch("alltypes");
+    let tmp = scratch!("alltypes");
     let m = all_types_mesh();
     let out = tmp.join("all.med");
     med::write_mesh(&out, &m, "ALLTYPES").unwrap();
@@ -320,7 +312,7 @@ fn small_mesh() -> Mesh {
 
 #[test]
 fn depl_field_over_two_steps() {
-    let tmp = scratch("field");
+    let tmp = scratch!("field");
     let m = small_mesh();
     let out = tmp.join("depl.med");
     med::write_mesh(&out, &m, "MA").unwrap();
@@ -372,7 +364,7 @@ fn depl_field_over_two_steps() {
 
 #[test]
 fn bad_input_gives_clear_errors() {
-    let tmp = scratch("bad");
+    let tmp = scratch!("bad");
     let good = tmp.join("good.med");
     med::write_mesh(&good, &small_mesh(), "MA").unwrap();
 

@@ -8,30 +8,12 @@
 //! `SKIPPED` with the reason and passes. Expected values are computed here:
 //! the analytic displacement of the scene, and counts reported by gmsh itself.
 
+use crate::common::*;
 use aster::med::{self, types::MedType};
 use aster::mesh::{CellType, Mesh};
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
-
-fn aster() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_aster"))
-}
-
-fn repo() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn scratch(test: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aster-rs-medtools-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn text(o: &Output) -> (String, String) {
-    (String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
-}
 
 /// Does `python` import every module of `modules`? Otherwise the reason.
 fn python_has(python: &str, modules: &str) -> Result<(), String> {
@@ -65,14 +47,14 @@ fn bits(v: &[f64]) -> Vec<u64> {
 /// The 2D scene with extra commands before its FIN(), run with the scene's
 /// mesh on unit 20 and the given output units.
 fn run_scene(dir: &Path, name: &str, extra: &str, units: &[(i64, &Path)]) -> Output {
-    let scene = std::fs::read_to_string(repo().join("comm/block_tension_2d.comm")).unwrap();
+    let scene = std::fs::read_to_string(root().join("comm/block_tension_2d.comm")).unwrap();
     let at = scene.rfind("FIN()").expect("the scene ends with FIN()");
     let src = format!("{}{extra}\n{}", &scene[..at], &scene[at..]);
     let comm = dir.join(format!("{name}.comm"));
     std::fs::write(&comm, src).unwrap();
     let mut cmd = aster();
     cmd.arg("run").arg(&comm).arg("--out").arg(dir.join(format!("{name}.out"))).arg("-q");
-    cmd.arg("--unit").arg(format!("20={}", repo().join("med/block_quad8.med").display()));
+    cmd.arg("--unit").arg(format!("20={}", root().join("med/block_quad8.med").display()));
     for (u, p) in units {
         cmd.arg("--unit").arg(format!("{u}={}", p.display()));
     }
@@ -92,7 +74,7 @@ const P: f64 = 100.0;
 
 #[test]
 fn impr_resu_result_read_by_med_tools_and_meshio() {
-    let dir = scratch("result");
+    let dir = scratch!("result");
     let rmed = dir.join("out.rmed");
     run_scene_ok(
         &dir,
@@ -103,7 +85,7 @@ fn impr_resu_result_read_by_med_tools_and_meshio() {
 
     // Our reader: the mesh of the model, named after the mesh concept, with
     // the coordinates of the input mesh, and the analytic displacement.
-    let input = med::read_mesh(&repo().join("med/block_quad8.med"), None).unwrap();
+    let input = med::read_mesh(&root().join("med/block_quad8.med"), None).unwrap();
     let mesh = med::read_mesh(&rmed, Some("MA")).unwrap();
     assert_eq!(bits(&mesh.coords.concat()), bits(&input.coords.concat()));
     assert_eq!(mesh.cells, input.cells);
@@ -151,7 +133,7 @@ fn impr_resu_result_read_by_med_tools_and_meshio() {
     match python_has("/usr/bin/python3", "med.medfield") {
         Err(why) => skipped("python3-med", &format!("{why}; apt-get install python3-med")),
         Ok(()) => {
-            let script = repo().join("scripts/med_check.py");
+            let script = root().join("scripts/med_check.py");
             let o = Command::new("/usr/bin/python3")
                 .arg(&script)
                 .args(["field", rmed.to_str().unwrap(), "RESU____DEPL"])
@@ -227,7 +209,7 @@ for name, data in m.point_data.items():
 
 #[test]
 fn impr_resu_several_occurrences_components_and_appending() {
-    let dir = scratch("occ");
+    let dir = scratch!("occ");
     let (a, b) = (dir.join("a.rmed"), dir.join("b.rmed"));
     let extra = "
 IMPR_RESU(FORMAT='MED', UNITE=80, RESU=(_F(MAILLAGE=MA), _F(RESULTAT=RESU, NOM_CHAM=('DEPL', 'SIGM_NOEU'))))
@@ -258,7 +240,7 @@ IMPR_RESU(FORMAT='MED', UNITE=81, RESU=_F(RESULTAT=RESU, NOM_CHAM='SIGM_NOEU', N
 
 #[test]
 fn impr_resu_errors_are_located() {
-    let dir = scratch("errors");
+    let dir = scratch!("errors");
     let out = dir.join("e.rmed");
     let cases = [
         ("RESU=_F(RESULTAT=RESU, NOM_CHAM='SIGM_ELNO')", "NOM_CHAM", "is an ELNO field"),
@@ -294,7 +276,7 @@ fn gmsh_mesh_read_by_us_and_aster_mesh_info() {
         skipped("gmsh", &format!("{why}; pip install gmsh"));
         return;
     }
-    let dir = scratch("gmsh");
+    let dir = scratch!("gmsh");
     let geo = dir.join("square.geo");
     let medf = dir.join("square.med");
     std::fs::write(

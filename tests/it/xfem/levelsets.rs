@@ -13,8 +13,7 @@ use std::path::Path;
 use std::process::Command;
 use std::rc::Rc;
 
-mod common;
-use common::*;
+use crate::common::*;
 
 /// The statement `NAME = ...(...)` of a command file, up to its closing
 /// parenthesis (quotes respected), with a trailing `;` dropped.
@@ -75,9 +74,7 @@ fn level_set_part(comm: &Path) -> String {
 /// Run the DEFI_FISS_XFEM part of a case; returns the message file.
 fn run_case(case: &str, mesh: &Path) -> String {
     let comm = astest(&format!("{case}.comm")).unwrap();
-    let dir = std::env::temp_dir().join(format!("aster-rs-xfemls-{}-{case}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch!(case);
     let file = dir.join(format!("{case}_ls.comm"));
     std::fs::write(&file, level_set_part(&comm)).unwrap();
     let out = dir.join("out");

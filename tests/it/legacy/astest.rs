@@ -3,18 +3,9 @@
 //! test on the list of passing tests (tests/passing.txt) regresses.
 //! Both skip with a message where ../shared is absent.
 
+use crate::common::*;
 use aster::runner::{self, RunOptions};
 use std::path::{Path, PathBuf};
-
-fn astest() -> Option<PathBuf> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/astest");
-    if p.is_dir() {
-        Some(p)
-    } else {
-        eprintln!("SKIPPED: {} is absent", p.display());
-        None
-    }
-}
 
 fn files(dir: &Path, ext: &str) -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(dir)
@@ -28,7 +19,7 @@ fn files(dir: &Path, ext: &str) -> Vec<PathBuf> {
 
 #[test]
 fn every_command_file_passes_the_catalogue() {
-    let Some(dir) = astest() else { return };
+    let Some(dir) = astest_dir() else { return };
     let comms = files(&dir, "comm");
     assert_eq!(comms.len(), 34, "the suite holds 34 command files");
     let mut failures = Vec::new();
@@ -46,12 +37,11 @@ fn every_command_file_passes_the_catalogue() {
 
 #[test]
 fn conformance() {
-    let Some(dir) = astest() else { return };
-    let passing_list =
-        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/passing.txt")).unwrap();
+    let Some(dir) = astest_dir() else { return };
+    let passing_list = std::fs::read_to_string(root().join("tests/passing.txt")).unwrap();
     let passing: Vec<&str> =
         passing_list.lines().map(|l| l.split('#').next().unwrap().trim()).filter(|l| !l.is_empty()).collect();
-    let out = std::env::temp_dir().join(format!("aster-conformance-{}", std::process::id()));
+    let out = scratch!("conformance");
     let opts = RunOptions { out_dir: Some(out.clone()), units: Vec::new(), echo: false };
     let mut regressions = Vec::new();
     let mut summary = Vec::new();

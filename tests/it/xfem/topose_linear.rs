@@ -8,6 +8,7 @@
 //! it sees (he ≠ 0), tetrahedra are positive.
 //! Every test prints a message and passes when `../shared` is absent.
 
+use crate::common::*;
 use aster::fem::reference::jacobian_det;
 use aster::mesh::{CellType, Mesh};
 use aster::xfem::postmail::base36;
@@ -15,17 +16,7 @@ use aster::xfem::topose::{CrackInCell, Cutting};
 use aster::xfem::topose_linear::topose_linear;
 use aster::xfem::{build_interface, Crack};
 use std::collections::{BTreeMap, HashMap};
-use std::path::Path;
 use std::rc::Rc;
-
-fn mesh(file: &str) -> Option<Rc<Mesh>> {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/astest").join(file);
-    if !p.exists() {
-        println!("SKIP: {} is absent", p.display());
-        return None;
-    }
-    Some(Rc::new(aster::med::read_mesh(&p, None).unwrap()))
-}
 
 /// One DEFI_FISS_XFEM: the level set, and JONCTION (index of the master in
 /// the list, POINT).

@@ -16,23 +16,13 @@
 //! 1e-8 relative to the displacement scale, the acceptance tolerance (the
 //! measured lip errors are printed in the table).
 
+use crate::common::*;
 use aster::runner::export::Dir;
 use aster::runner::{self, RunOptions};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 const H: f64 = 1.25;
 const U: f64 = 1.0e-4;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()
-}
-
-fn scratch(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aster-rs-xfem-hard-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// The scene with the two level sets shifted by δ and the lip tolerance at 1e-8·U.
 fn variant(base: &str, delta: f64, order: i64) -> String {
@@ -144,7 +134,7 @@ fn run_variant(dir: &Path, base: &str, label: &str, delta: f64, order: i64) -> R
 /// Run every variant with facet rule `order`; returns the rows (printed).
 fn study(order: i64) -> Vec<Row> {
     let base = std::fs::read_to_string(root().join("comm/junction_2d.comm")).unwrap();
-    let dir = scratch(&format!("rows{order}"));
+    let dir = scratch!(&format!("rows{order}"));
     let mut cases: Vec<(String, f64)> = vec![("0".to_string(), 0.0)];
     for k in 1..=12 {
         let d = 10f64.powi(-k) * H;

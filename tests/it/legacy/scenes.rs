@@ -1,11 +1,11 @@
 //! Our own scenes (comm/*.export) run end to end with every check OK.
 
+use crate::common::*;
 use aster::runner::{self, RunOptions};
-use std::path::Path;
 
 #[test]
 fn every_scene_runs_ok() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("comm");
+    let dir = root().join("comm");
     let mut exports: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -13,7 +13,7 @@ fn every_scene_runs_ok() {
         .collect();
     exports.sort();
     assert!(exports.len() >= 2, "comm/ should hold our scenes");
-    let out = std::env::temp_dir().join(format!("aster-scenes-{}", std::process::id()));
+    let out = scratch!("scenes");
     let opts = RunOptions { out_dir: Some(out.clone()), units: Vec::new(), echo: false };
     let mut failures = Vec::new();
     for e in &exports {
@@ -30,12 +30,8 @@ fn every_scene_runs_ok() {
 #[test]
 fn the_default_scene_is_a_comm_file() {
     let (file, src) = runner::DEFAULT_SCENE;
-    let on_disk = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("comm").join(file)).unwrap();
+    let on_disk = std::fs::read_to_string(root().join("comm").join(file)).unwrap();
     assert_eq!(src, on_disk);
-    let o = runner::run_default(&RunOptions {
-        out_dir: Some(std::env::temp_dir().join(format!("aster-default-{}", std::process::id()))),
-        units: Vec::new(),
-        echo: false,
-    });
+    let o = runner::run_default(&RunOptions { out_dir: Some(scratch!("default")), units: Vec::new(), echo: false });
     assert_eq!(o.diagnostic, "OK", "{:?}", o.error);
 }

@@ -4,13 +4,6 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aster-fe-errors-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// A QUAD4 block 2 x 1 (groups BAS, DROITE, HAUT, GAUCHE, SURFACE) written by our MED writer.
 fn mesh(dir: &Path) -> PathBuf {
     let p = dir.join("block.med");
@@ -28,7 +21,7 @@ MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELIS
 ACIER = DEFI_MATERIAU(ELAS=_F(E=2.0e5, NU=0.3))\n";
 
 fn run(name: &str, body: &str) -> (i32, String) {
-    let dir = scratch(name);
+    let dir = scratch!(name);
     let m = mesh(&dir);
     std::fs::write(dir.join("case.comm"), format!("{HEAD}{body}")).unwrap();
     let out = Command::new(env!("CARGO_BIN_EXE_aster"))

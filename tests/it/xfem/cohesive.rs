@@ -6,7 +6,7 @@
 //! the traction is the bulk stress. The numbers come from STAT_NON_LINE's
 //! per-step interface report in the message file.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 const SIGMA_C: f64 = 5.0e5;
@@ -37,16 +37,9 @@ FIN()
     )
 }
 
-fn work(tag: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aster-rs-cohesive-{}-{tag}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
 /// Run the scene; returns, per step, (λ_n min, λ_n max, w_n min, w_n max, dissipated).
 fn run(tag: &str, delta: f64, instants: &str) -> Vec<[f64; 5]> {
-    let dir = work(tag);
+    let dir = scratch!(tag);
     let exe = env!("CARGO_BIN_EXE_aster");
     let mesh = dir.join("one.med");
     let o = Command::new(exe)
@@ -141,7 +134,7 @@ fn compression_keeps_the_interface_shut() {
 #[test]
 fn the_test_scene_is_well_formed() {
     // The scene text itself passes the catalogue (guards the two tests above).
-    let dir = work("check");
+    let dir = scratch!("check");
     let comm = dir.join("one.comm");
     std::fs::write(&comm, scene(1e-3, "_F(JUSQU_A=1.0, NOMBRE=1)")).unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_aster")).arg("check").arg(&comm).output().unwrap();

@@ -11,17 +11,10 @@ use aster::mesh::generate::box_mesh;
 use aster::mesh::{CellType, Mesh};
 use aster::runner::export::Dir;
 use aster::runner::{self, Outcome, RunOptions};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 const E: f64 = 2.0e5;
 const NU: f64 = 0.3;
-
-fn scratch(test: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("aster-rs-rungb-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 /// Write `mesh` and `comm`, run the command file with the mesh on unit 20.
 fn run(dir: &Path, name: &str, mesh: &Mesh, comm: &str) -> Outcome {
@@ -129,7 +122,7 @@ fn pressure_scene(orient: bool) -> (Mesh, String) {
 
 #[test]
 fn orie_peau_turns_a_reversed_pressure_edge_out() {
-    let dir = scratch("orie2d");
+    let dir = scratch!("orie2d");
     let (mesh, comm) = pressure_scene(true);
     let o = run(&dir, "press", &mesh, &comm);
     assert_all_ok(&o, 8);
@@ -144,7 +137,7 @@ fn orie_peau_turns_a_reversed_pressure_edge_out() {
 /// rollers on XMIN, YMIN, ZMIN: uz(1) = -P/E, ux(1) = uy(1) = ν P / E.
 #[test]
 fn orie_peau_3d_on_reversed_faces() {
-    let dir = scratch("orie3d");
+    let dir = scratch!("orie3d");
     let p = 7.0;
     let mut mesh = box_mesh(CellType::Hexa20, &[1, 2, 1], &[1.0, 1.0, 1.0]).unwrap();
     reverse_group(&mut mesh, "ZMAX");
@@ -175,7 +168,7 @@ fn orie_peau_3d_on_reversed_faces() {
 /// ANGL_NAUT = 30 gives back σ'xx = E D, σ'yy = σ'xy = 0 and u' = (D, -ν D).
 #[test]
 fn face_impo_dnor_on_inclined_faces_and_modi_repere() {
-    let dir = scratch("dnor");
+    let dir = scratch!("dnor");
     let d = 1.0e-3;
     let th = 30f64.to_radians();
     let (s, c) = th.sin_cos();
@@ -230,7 +223,7 @@ fn face_impo_dnor_on_inclined_faces_and_modi_repere() {
 /// shear ux = a y: σxy = E a / (2 (1 + ν)), uy = 0.
 #[test]
 fn face_impo_components_with_a_function() {
-    let dir = scratch("faceimpo");
+    let dir = scratch!("faceimpo");
     let a = 2.0e-3;
     let mut mesh = box_mesh(CellType::Quad4, &[2, 2], &[1.0, 1.0]).unwrap();
     let c = node_at(&mesh, [1.0, 1.0]);
@@ -266,7 +259,7 @@ fn face_impo_components_with_a_function() {
 /// not implement.
 #[test]
 fn located_errors() {
-    let dir = scratch("errors");
+    let dir = scratch!("errors");
     let mut mesh = box_mesh(CellType::Quad4, &[2, 1], &[2.0, 1.0]).unwrap();
     let (a, b) = (node_at(&mesh, [1.0, 0.0]), node_at(&mesh, [1.0, 1.0]));
     mesh.cells.push(vec![a, b]);

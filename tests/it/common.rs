@@ -1,0 +1,85 @@
+//! Helpers shared by the integration tests: the repository and the legacy suite's files read in place,
+//! scratch folders, the `aster` binary, and FISS1/FISS2 of WTNV149 built from level-set closures.
+#![allow(dead_code)]
+
+use aster::mesh::Mesh;
+use aster::xfem::{build_interface, Crack};
+use std::path::PathBuf;
+use std::process::{Command, Output};
+use std::rc::Rc;
+
+/// The repository's root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The folder `../shared/astest`, or None (with a SKIP message) when absent.
+pub fn astest_dir() -> Option<PathBuf> {
+    let p = root().join("../shared/astest");
+    if p.is_dir() {
+        Some(p)
+    } else {
+        println!("SKIP: {} is absent", p.display());
+        None
+    }
+}
+
+/// A file of `../shared/astest`, or None (with a SKIP message) when absent.
+pub fn astest(file: &str) -> Option<PathBuf> {
+    let p = root().join("../shared/astest").join(file);
+    if p.exists() {
+        Some(p)
+    } else {
+        println!("SKIP: {} is absent", p.display());
+        None
+    }
+}
+
+/// A mesh of `../shared/astest`, read in place.
+pub fn mesh(file: &str) -> Option<Rc<Mesh>> {
+    let p = astest(file)?;
+    Some(Rc::new(aster::med::read_mesh(&p, None).unwrap()))
+}
+
+/// A fresh, empty scratch folder for one test: `scratch!("tag")` names it after the calling module and
+/// the tag, so tests of different modules never share one (they all run in this one process).
+#[macro_export]
+macro_rules! scratch {
+    ($tag:expr) => {
+        $crate::common::scratch_dir(module_path!(), &$tag)
+    };
+}
+
+/// The folder behind [`scratch!`]: `aster-rs-it-<pid>-<module>-<tag>` in the temporary folder.
+pub fn scratch_dir(module: &str, tag: &str) -> PathBuf {
+    let module = module.trim_start_matches("it::").replace("::", "-");
+    let d = std::env::temp_dir().join(format!("aster-rs-it-{}-{module}-{tag}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// The `aster` binary of this build.
+pub fn aster() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_aster"))
+}
+
+/// A process's standard output and error as text.
+pub fn text(o: &Output) -> (String, String) {
+    (String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
+}
+
+/// FISS1 then FISS2 with its junction on FISS1 at `point` (DEFI_FISS_XFEM of the .comm).
+pub fn two_cracks(
+    mesh: &Rc<Mesh>,
+    f1: impl Fn(&[f64; 3]) -> f64,
+    f2: impl Fn(&[f64; 3]) -> f64,
+    point: &[f64],
+) -> (Rc<Crack>, Rc<Crack>) {
+    let l1 = mesh.coords.iter().map(&f1).collect();
+    let c1 = Rc::new(build_interface("MA".into(), mesh.clone(), l1, None, &[], None).unwrap());
+    let l2 = mesh.coords.iter().map(&f2).collect();
+    let masters = [("FISS1".to_string(), c1.clone())];
+    let c2 = Rc::new(build_interface("MA".into(), mesh.clone(), l2, None, &masters, Some(point)).unwrap());
+    (c1, c2)
+}

@@ -1,0 +1,5 @@
+//! The finite-element core: patch tests of every cell type and modelisation, located errors of the
+//! solving stages, POST_RELEVE_T's nodal averaging.
+mod fe_errors;
+mod patch;
+mod post_releve;

@@ -1,0 +1,6 @@
+//! Meshes and results on disk: MED round trips, the reference MED tools and meshio, the mesh stages
+//! (LIRE_MAILLAGE, DEFI_GROUP, `aster mesh`), and the printed formats (RESULTAT, GMSH, tables).
+mod mesh_stages;
+mod print_formats;
+mod roundtrip;
+mod tools;
