@@ -206,18 +206,7 @@ fn view_body(out: &mut String, mesh: &Mesh, els: &Elements, fields: &[(&[f64], u
 
 /// One RESU occurrence: the views of the node fields of a result.
 fn print_occurrence(occ: &Args, first: bool, version: u8, out: &mut String, alarms: &mut String) -> Result<()> {
-    occ.refuse(&[
-        "MAILLAGE",
-        "CHAM_GD",
-        "NUME_MODE",
-        "LIST_ORDRE",
-        "NOEUD_CMP",
-        "NOM_CAS",
-        "ANGLE",
-        "FREQ",
-        "LIST_FREQ",
-        "LIST_INST",
-    ])?;
+    occ.refuse(&["MAILLAGE", "CHAM_GD", "NUME_MODE", "NOEUD_CMP", "NOM_CAS", "ANGLE", "FREQ", "LIST_FREQ"])?;
     // TYPE_CHAM is read in version 1.2 only (irmfac).
     let type_cham = if version == 2 { occ.text("TYPE_CHAM").unwrap_or("SCALAIRE") } else { "SCALAIRE" };
     if type_cham.starts_with("TENS") {

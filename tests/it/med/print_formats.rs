@@ -332,6 +332,30 @@ fn gmsh_version_1_0_writes_a_vector_on_triangles() {
     gmsh_python_check(&dir.join("v10.pos"), &[("RESU_DEPL_VECTEUR", 1), ("RESU_DEPL_DY", 2)]);
 }
 
+/// LIST_ORDRE takes a DEFI_LIST_ENTI, given by intervals or by values.
+#[test]
+fn gmsh_steps_from_a_list_of_integers() {
+    let dir = scratch!("list_ordre");
+    let r = run(
+        &dir,
+        "list_ordre",
+        r#"EVEN = DEFI_LIST_ENTI(DEBUT=0, INTERVALLE=_F(JUSQU_A=2, PAS=2))
+LAST = DEFI_LIST_ENTI(VALE=(1, 2))
+IMPR_RESU(FORMAT="GMSH", VERSION=1.0, UNITE=82,
+          RESU=(_F(RESULTAT=RESU, NOM_CHAM="DEPL", LIST_ORDRE=EVEN, NOM_CMP="DY"),
+                _F(RESULTAT=RESU, NOM_CHAM="DEPL", LIST_ORDRE=LAST, NOM_CMP="DX")))"#,
+    );
+    assert!(r.ok, "{}", r.out);
+    let f = parse_pos(&r.pos);
+    let views: Vec<(&str, &[f64])> = f.views.iter().map(|v| (v.name.as_str(), v.times.as_slice())).collect();
+    assert_eq!(views, [("RESU_DEPL_DY", &[0.0, 2.0][..]), ("RESU_DEPL_DX", &[1.0, 2.0][..])]);
+    for e in &f.views[1].elements {
+        for (n, p) in e.coords.iter().enumerate() {
+            assert!(close(e.values[1][n][0], exact(2.0, p[0], p[1])[0]), "at {p:?}");
+        }
+    }
+}
+
 #[test]
 fn gmsh_vect_2d_on_a_group_of_cells() {
     let dir = scratch!("vect2d");
