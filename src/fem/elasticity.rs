@@ -30,8 +30,9 @@
 //!   oriented (`ORIE_PEAU_3D`) so that `n` points out of the solid.
 
 use super::quadrature::{aster_rule, family_rule, Family, QuadratureRule};
-use super::reference::{node_coords, shape, shape_and_deriv, MAX_NODES};
+use super::reference::{jacobian_inverse, node_coords, shape, shape_and_deriv, MAX_NODES};
 use crate::mesh::CellType;
+use nalgebra::{DMatrix, Matrix6, Vector2, Vector3};
 use std::fmt;
 
 /// The mechanical modelisations handled here.
@@ -129,46 +130,21 @@ pub struct IsoElastic {
     general: Option<[[f64; 6]; 6]>,
 }
 
-/// Invert a symmetric positive definite 6×6 matrix (Cholesky), or None when
-/// it is not positive definite.
-#[allow(clippy::needless_range_loop)]
+/// Invert a symmetric positive definite 6×6 matrix by nalgebra's Cholesky
+/// factorisation (of its lower triangle), or None when it is not positive
+/// definite: a pivot (squared diagonal of the factor) at or below 1e-13 times
+/// the largest diagonal entry, or not finite.
 fn spd_inverse6(a: &[[f64; 6]; 6]) -> Option<[[f64; 6]; 6]> {
     let scale = (0..6).map(|i| a[i][i].abs()).fold(0.0f64, f64::max);
     if !(scale > 0.0 && scale.is_finite()) {
         return None;
     }
-    // A = L Lᵀ.
-    let mut l = [[0.0; 6]; 6];
-    for i in 0..6 {
-        for j in 0..=i {
-            let s = a[i][j] - (0..j).map(|k| l[i][k] * l[j][k]).sum::<f64>();
-            if i == j {
-                if s <= 1e-13 * scale || !s.is_finite() {
-                    return None;
-                }
-                l[i][i] = s.sqrt();
-            } else {
-                l[i][j] = s / l[j][j];
-            }
-        }
+    let chol = Matrix6::from_fn(|r, c| a[r][c]).cholesky()?;
+    if !chol.l_dirty().diagonal().iter().all(|l| l * l > 1e-13 * scale && l.is_finite()) {
+        return None;
     }
-    // Columns of A⁻¹: solve L y = e_c, then Lᵀ x = y.
-    let mut inv = [[0.0; 6]; 6];
-    for c in 0..6 {
-        let mut y = [0.0; 6];
-        for i in 0..6 {
-            let rhs = if i == c { 1.0 } else { 0.0 };
-            y[i] = (rhs - (0..i).map(|k| l[i][k] * y[k]).sum::<f64>()) / l[i][i];
-        }
-        let mut x = [0.0; 6];
-        for i in (0..6).rev() {
-            x[i] = (y[i] - (i + 1..6).map(|k| l[k][i] * x[k]).sum::<f64>()) / l[i][i];
-        }
-        for i in 0..6 {
-            inv[i][c] = x[i];
-        }
-    }
-    Some(inv)
+    let inv = chol.inverse();
+    Some(std::array::from_fn(|r| std::array::from_fn(|c| inv[(r, c)])))
 }
 
 impl IsoElastic {
@@ -384,33 +360,6 @@ pub struct GaussGeom {
     pub dn: [[f64; 3]; MAX_NODES],
 }
 
-fn inv_det(j: &[[f64; 3]; 3], dim: usize) -> (f64, [[f64; 3]; 3]) {
-    let mut inv = [[0.0; 3]; 3];
-    if dim == 2 {
-        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-        inv[0][0] = j[1][1] / det;
-        inv[0][1] = -j[0][1] / det;
-        inv[1][0] = -j[1][0] / det;
-        inv[1][1] = j[0][0] / det;
-        (det, inv)
-    } else {
-        let c00 = j[1][1] * j[2][2] - j[1][2] * j[2][1];
-        let c01 = j[1][2] * j[2][0] - j[1][0] * j[2][2];
-        let c02 = j[1][0] * j[2][1] - j[1][1] * j[2][0];
-        let det = j[0][0] * c00 + j[0][1] * c01 + j[0][2] * c02;
-        inv[0][0] = c00 / det;
-        inv[1][0] = c01 / det;
-        inv[2][0] = c02 / det;
-        inv[0][1] = (j[0][2] * j[2][1] - j[0][1] * j[2][2]) / det;
-        inv[1][1] = (j[0][0] * j[2][2] - j[0][2] * j[2][0]) / det;
-        inv[2][1] = (j[0][1] * j[2][0] - j[0][0] * j[2][1]) / det;
-        inv[0][2] = (j[0][1] * j[1][2] - j[0][2] * j[1][1]) / det;
-        inv[1][2] = (j[0][2] * j[1][0] - j[0][0] * j[1][2]) / det;
-        inv[2][2] = (j[0][0] * j[1][1] - j[0][1] * j[1][0]) / det;
-        (det, inv)
-    }
-}
-
 /// Geometry at every point of `rule` for a volume cell of the modelisation.
 pub fn gauss_geometry(
     m: Modelisation,
@@ -441,12 +390,13 @@ pub fn gauss_geometry(
                 }
             }
         }
-        let (det, inv) = inv_det(&j, dim);
         // Cells numbered clockwise have a negative Jacobian; like Code_Aster,
-        // integrate with its absolute value and refuse only degenerate cells.
-        if det.is_nan() || det == 0.0 {
+        // integrate with its absolute value and refuse only degenerate cells
+        // (a singular or non-finite Jacobian).
+        let (det, inv) = jacobian_inverse(&j, dim);
+        let Some(inv) = inv else {
             return Err(ElementError::BadJacobian { cell_type: t, gauss_point: g, det });
-        }
+        };
         let mut dn = [[0.0; 3]; MAX_NODES];
         for a in 0..nno {
             for i in 0..dim {
@@ -750,7 +700,6 @@ pub fn vertex_type(t: CellType) -> CellType {
     }
 }
 
-#[allow(clippy::needless_range_loop)]
 /// Code_Aster's Gauss → node extrapolation matrix of `rule` on `t`:
 /// `m[node][gauss]` (see the module documentation).
 pub fn gauss_to_node_matrix(t: CellType, rule: &QuadratureRule) -> Vec<Vec<f64>> {
@@ -761,50 +710,19 @@ pub fn gauss_to_node_matrix(t: CellType, rule: &QuadratureRule) -> Vec<Vec<f64>>
     }
     let tv = vertex_type(t);
     let nnos = tv.nnodes();
-    // Least squares: (Σ_g N Nᵀ)⁻¹ [N(ξ_g)]_g.
+    // Least squares: (Σ_g N Nᵀ)⁻¹ [N(ξ_g)]_g, by nalgebra's LU with partial
+    // pivoting. The vertex element is unisolvent on the RIGI points of every
+    // cell type (the tests cover them all), so the system is regular.
     let p: Vec<Vec<f64>> = rule.points.iter().map(|xi| shape(tv, xi)).collect();
-    let mut mm = vec![vec![0.0; nnos]; nnos];
-    for pg in &p {
-        for i in 0..nnos {
-            for j in 0..nnos {
-                mm[i][j] += pg[i] * pg[j];
-            }
-        }
-    }
-    // rhs columns: P (nnos × npg)
-    let mut rhs: Vec<Vec<f64>> = (0..nnos).map(|i| p.iter().map(|pg| pg[i]).collect()).collect();
-    // Gauss-Jordan with partial pivoting.
-    for c in 0..nnos {
-        let piv = (c..nnos).max_by(|&a, &b| mm[a][c].abs().total_cmp(&mm[b][c].abs())).unwrap();
-        mm.swap(c, piv);
-        rhs.swap(c, piv);
-        let d = mm[c][c];
-        for j in 0..nnos {
-            mm[c][j] /= d;
-        }
-        for v in rhs[c].iter_mut() {
-            *v /= d;
-        }
-        for r in 0..nnos {
-            if r != c {
-                let f = mm[r][c];
-                if f != 0.0 {
-                    for j in 0..nnos {
-                        mm[r][j] -= f * mm[c][j];
-                    }
-                    for g in 0..npg {
-                        rhs[r][g] -= f * rhs[c][g];
-                    }
-                }
-            }
-        }
-    }
+    let mm = DMatrix::from_fn(nnos, nnos, |i, j| p.iter().map(|pg| pg[i] * pg[j]).sum());
+    let rhs = DMatrix::from_fn(nnos, npg, |i, g| p[g][i]);
+    let x = mm.lu().solve(&rhs).expect("the vertex element is unisolvent on the Gauss points");
+    let mut out: Vec<Vec<f64>> = x.row_iter().map(|r| r.iter().copied().collect()).collect();
     // Other nodes: linear (vertex-element) interpolation of vertex values.
     let nodes = node_coords(t);
-    let mut out = rhs.clone();
     for node in nodes.iter().take(nno).skip(nnos) {
         let w = shape(tv, node);
-        let row: Vec<f64> = (0..npg).map(|g| (0..nnos).map(|s| w[s] * rhs[s][g]).sum()).collect();
+        let row: Vec<f64> = (0..npg).map(|g| (0..nnos).map(|s| w[s] * x[(s, g)]).sum()).collect();
         out.push(row);
     }
     out
@@ -910,12 +828,12 @@ pub fn boundary_points(m: Modelisation, t: CellType, coords: &[[f64; 3]]) -> Res
             }
         }
         let (jac, normal) = if t.dim() == 1 {
-            let l = (t1[0] * t1[0] + t1[1] * t1[1]).sqrt();
+            let l = Vector2::new(t1[0], t1[1]).norm();
             (l, [t1[1] / l, -t1[0] / l, 0.0])
         } else {
-            let c = [t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]];
-            let l = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
-            (l, [c[0] / l, c[1] / l, c[2] / l])
+            let c = Vector3::from(t1).cross(&Vector3::from(t2));
+            let l = c.norm();
+            (l, (c / l).into())
         };
         if jac.is_nan() || jac <= 0.0 {
             return Err(ElementError::BadJacobian { cell_type: t, gauss_point: gp, det: jac });

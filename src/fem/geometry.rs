@@ -11,6 +11,7 @@
 
 use crate::fem::reference::{node_coords, shape_deriv};
 use crate::mesh::{CellType, Mesh};
+use nalgebra::Vector3;
 use std::collections::{BTreeMap, HashSet};
 
 /// Can the cell type be a skin cell whose normal we compute (SEG2/3 of a
@@ -20,34 +21,20 @@ pub fn is_skin_type(t: CellType) -> bool {
     matches!(t, Seg2 | Seg3 | Tria3 | Tria6 | Quad4 | Quad8 | Quad9)
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
+type V3 = Vector3<f64>;
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// `a / |a|`, or None for a vector of zero (or non-finite) length.
-fn unit(a: [f64; 3]) -> Option<[f64; 3]> {
-    let l = norm(a);
-    (l.is_finite() && l > 0.0).then(|| [a[0] / l, a[1] / l, a[2] / l])
+/// `a / |a|`, or None for a vector of zero or non-finite (NaN, overflowing)
+/// length.
+fn unit(a: V3) -> Option<V3> {
+    a.try_normalize(0.0).filter(|_| a.norm().is_finite())
 }
 
 /// The (not normalized) normal of a skin cell at the reference point `xi`:
 /// `(t_y, -t_x, 0)` for a segment, `∂x/∂ξ × ∂x/∂η` for a face.
-fn raw_normal(t: CellType, coords: &[[f64; 3]], xi: &[f64; 3]) -> [f64; 3] {
+fn raw_normal(t: CellType, coords: &[[f64; 3]], xi: &[f64; 3]) -> V3 {
     let dn = shape_deriv(t, xi);
-    let mut t1 = [0.0; 3];
-    let mut t2 = [0.0; 3];
+    let mut t1 = V3::zeros();
+    let mut t2 = V3::zeros();
     for (g, x) in dn.iter().zip(coords) {
         for k in 0..3 {
             t1[k] += g[0] * x[k];
@@ -55,9 +42,9 @@ fn raw_normal(t: CellType, coords: &[[f64; 3]], xi: &[f64; 3]) -> [f64; 3] {
         }
     }
     if t.dim() == 1 {
-        [t1[1], -t1[0], 0.0]
+        V3::new(t1[1], -t1[0], 0.0)
     } else {
-        cross(t1, t2)
+        t1.cross(&t2)
     }
 }
 
@@ -69,13 +56,14 @@ pub fn normal_at(t: CellType, coords: &[[f64; 3]], xi: &[f64; 3]) -> Option<[f64
     }
     let n = raw_normal(t, coords, xi);
     // Relative to the cell size, so that a tiny but valid cell is not "degenerate".
-    let h = coords.iter().map(|x| norm(sub(*x, coords[0]))).fold(0.0, f64::max);
+    let x0 = V3::from(coords[0]);
+    let h = coords.iter().map(|x| (V3::from(*x) - x0).norm()).fold(0.0, f64::max);
     let scale = if t.dim() == 1 { h } else { h * h };
     // (Written so that a NaN normal is refused too.)
-    if norm(n).partial_cmp(&(1e-12 * scale)) != Some(std::cmp::Ordering::Greater) {
+    if n.norm().partial_cmp(&(1e-12 * scale)) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
-    unit(n)
+    unit(n).map(Into::into)
 }
 
 /// Unit normals of a skin cell at each of its nodes (the shape-function
@@ -133,11 +121,12 @@ pub fn outward_measure(
     if !is_skin_type(skin) || skin_coords.len() < 3 - usize::from(skin.dim() == 1) {
         return None;
     }
-    let n12 = sub(skin_coords[1], skin_coords[0]);
-    let n = if skin.dim() == 1 { [n12[1], -n12[0], 0.0] } else { cross(n12, sub(skin_coords[2], skin_coords[0])) };
+    let x = |i: usize| V3::from(skin_coords[i]);
+    let n12 = x(1) - x(0);
+    let n = if skin.dim() == 1 { V3::new(n12[1], -n12[0], 0.0) } else { n12.cross(&(x(2) - x(0))) };
     let n = unit(n)?;
-    let d = unit(sub(vertex_centroid(skin, skin_coords), vertex_centroid(support, support_coords)))?;
-    Some(dot(n, d))
+    let d = unit(V3::from(vertex_centroid(skin, skin_coords)) - V3::from(vertex_centroid(support, support_coords)))?;
+    Some(n.dot(&d))
 }
 
 /// For each node, the cells that hold it (ascending cell numbers).
@@ -203,7 +192,7 @@ pub fn outward_sign(mesh: &Mesh, node_cells: &[Vec<usize>], skin: usize) -> Opti
 /// `signs[i]` for `cells[i]`), normalized. Err names the first degenerate
 /// cell, or a node where the normals cancel.
 pub fn averaged_node_normals(mesh: &Mesh, cells: &[usize], signs: &[f64]) -> Result<BTreeMap<usize, [f64; 3]>, String> {
-    let mut sum: BTreeMap<usize, [f64; 3]> = BTreeMap::new();
+    let mut sum: BTreeMap<usize, V3> = BTreeMap::new();
     for (&c, &s) in cells.iter().zip(signs) {
         let t = mesh.cell_types[c];
         if !is_skin_type(t) {
@@ -211,18 +200,15 @@ pub fn averaged_node_normals(mesh: &Mesh, cells: &[usize], signs: &[f64]) -> Res
         }
         for (&node, n) in mesh.cells[c].iter().zip(node_normals(t, &cell_coords(mesh, c))) {
             let n = n.ok_or_else(|| format!("cell {} is degenerate: no normal", mesh.cell_names[c]))?;
-            let e = sum.entry(node).or_insert([0.0; 3]);
-            for k in 0..3 {
-                e[k] += s * n[k];
-            }
+            *sum.entry(node).or_insert_with(V3::zeros) += s * V3::from(n);
         }
     }
     let mut out = BTreeMap::new();
     for (node, v) in sum {
         let n = unit(v)
-            .filter(|_| norm(v) > 1e-8)
+            .filter(|_| v.norm() > 1e-8)
             .ok_or_else(|| format!("the normals cancel at node {}", mesh.node_names[node]))?;
-        out.insert(node, n);
+        out.insert(node, n.into());
     }
     Ok(out)
 }

@@ -32,6 +32,7 @@
 //! cell's dimension) are ignored and reported as 0.
 
 use crate::mesh::CellType;
+use nalgebra::{Matrix2, Matrix3, Vector3};
 use std::fmt;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -584,64 +585,87 @@ pub fn jacobian_det(t: CellType, coords: &[[f64; 3]], xi: &[f64; 3], space_dim: 
         return 1.0;
     }
     if dim == space_dim {
-        return match dim {
-            1 => j[0][0],
-            2 => j[0][0] * j[1][1] - j[0][1] * j[1][0],
-            _ => det3(&j),
-        };
+        return leading_det(&matrix3(&j), dim);
     }
-    let g = gram(&j, dim);
+    let g = leading_det(&gram(&matrix3(&j), dim), dim);
     match dim {
-        1 => g[0][0].sqrt(),
-        2 => (g[0][0] * g[1][1] - g[0][1] * g[1][0]).max(0.0).sqrt(),
-        _ => det3(&g).abs().sqrt(),
+        1 => g.sqrt(),
+        2 => g.max(0.0).sqrt(),
+        _ => g.abs().sqrt(),
     }
 }
 
-fn det3(a: &[[f64; 3]; 3]) -> f64 {
-    a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0])
-        + a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0])
+/// A 3×3 array of rows (`a[row][column]`, as [`jacobian`] returns) as a
+/// nalgebra matrix.
+fn matrix3(a: &[[f64; 3]; 3]) -> Matrix3<f64> {
+    Matrix3::from_fn(|r, c| a[r][c])
 }
 
-/// JᵀJ restricted to the first `dim` reference directions.
-fn gram(j: &[[f64; 3]; 3], dim: usize) -> [[f64; 3]; 3] {
-    let mut g = [[0.0; 3]; 3];
-    for a in 0..dim {
-        for b in 0..dim {
-            g[a][b] = (0..3).map(|i| j[i][a] * j[i][b]).sum();
-        }
+/// Determinant of the leading `dim × dim` block of `a` (dim = 1, 2 or 3).
+fn leading_det(a: &Matrix3<f64>, dim: usize) -> f64 {
+    match dim {
+        1 => a[(0, 0)],
+        2 => a.fixed_view::<2, 2>(0, 0).determinant(),
+        _ => a.determinant(),
     }
-    g
 }
 
-/// Solve the `n × n` system `a s = b` (n ≤ 3) by Gaussian elimination with
-/// partial pivoting; `None` when singular relative to `scale`.
-fn solve_small(mut a: [[f64; 3]; 3], mut b: [f64; 3], n: usize, scale: f64) -> Option<[f64; 3]> {
-    for col in 0..n {
-        let piv = (col..n).max_by(|&r, &s| a[r][col].abs().total_cmp(&a[s][col].abs()))?;
-        if a[piv][col].abs() <= 1e-14 * scale {
-            return None;
+/// The determinant and the inverse of the leading `dim × dim` block (dim = 1,
+/// 2 or 3) of a Jacobian `j[i][k] = ∂x_i/∂ξ_k`, the inverse padded with zeros
+/// (`inv[k][i] = ∂ξ_k/∂x_i`). The inverse is None when the block is singular
+/// or not finite (its determinant is returned all the same, for the
+/// caller's message).
+pub fn jacobian_inverse(j: &[[f64; 3]; 3], dim: usize) -> (f64, Option<[[f64; 3]; 3]>) {
+    let mut inv = [[0.0; 3]; 3];
+    let det = match dim {
+        1 => {
+            let det = j[0][0];
+            inv[0][0] = 1.0 / det;
+            det
         }
-        a.swap(col, piv);
-        b.swap(col, piv);
-        for r in col + 1..n {
-            let f = a[r][col] / a[col][col];
-            let pivot_row = a[col];
-            for (v, pv) in a[r].iter_mut().zip(pivot_row).take(n).skip(col) {
-                *v -= f * pv;
+        2 => {
+            let m = Matrix2::new(j[0][0], j[0][1], j[1][0], j[1][1]);
+            let det = m.determinant();
+            let Some(mi) = m.try_inverse() else { return (det, None) };
+            for (k, row) in inv.iter_mut().enumerate().take(2) {
+                for (i, v) in row.iter_mut().enumerate().take(2) {
+                    *v = mi[(k, i)];
+                }
             }
-            b[r] -= f * b[col];
+            det
         }
-    }
-    let mut s = [0.0; 3];
-    for r in (0..n).rev() {
-        let mut v = b[r];
-        for c in r + 1..n {
-            v -= a[r][c] * s[c];
+        _ => {
+            let m = matrix3(j);
+            let det = m.determinant();
+            let Some(mi) = m.try_inverse() else { return (det, None) };
+            inv = mi.transpose().into();
+            det
         }
-        s[r] = v / a[r][r];
+    };
+    let finite = det.is_finite() && inv.iter().flatten().all(|v| v.is_finite());
+    (det, (det != 0.0 && finite).then_some(inv))
+}
+
+/// JᵀJ restricted to the first `dim` reference directions (zero elsewhere).
+fn gram(j: &Matrix3<f64>, dim: usize) -> Matrix3<f64> {
+    Matrix3::from_fn(|a, b| if a < dim && b < dim { j.column(a).dot(&j.column(b)) } else { 0.0 })
+}
+
+/// Solve the `n × n` system `a s = b` (n ≤ 3, in the leading block) by
+/// nalgebra's LU with partial pivoting, the unused block set to the
+/// identity; `None` when a pivot is not above `1e-14 scale` (singular
+/// relative to `scale`) or is not finite.
+fn solve_small(a: &Matrix3<f64>, b: &Vector3<f64>, n: usize, scale: f64) -> Option<Vector3<f64>> {
+    let mut a = *a;
+    for k in n..3 {
+        a[(k, k)] = 1.0;
     }
-    Some(s)
+    let lu = a.lu();
+    // The padded rows are zero in the first n columns, so they never pivot there.
+    if !lu.u().diagonal().iter().take(n).all(|p| p.abs() > 1e-14 * scale && p.is_finite()) {
+        return None;
+    }
+    lu.solve(b)
 }
 
 /// Settings of [`inverse_map`].
@@ -735,23 +759,19 @@ pub fn inverse_map(
     let mut h2: f64 = 0.0;
     for c in coords {
         for d in coords {
-            h2 = h2.max((0..3).map(|k| (c[k] - d[k]).powi(2)).sum());
+            h2 = h2.max((Vector3::from(*c) - Vector3::from(*d)).norm_squared());
         }
     }
     let h = h2.sqrt().max(f64::MIN_POSITIVE);
     let mut xi = ref_centroid(t);
     let mut step = f64::INFINITY;
     for it in 1..=opts.max_iter {
-        let xr = map_to_real(t, coords, &xi);
-        let r = [x[0] - xr[0], x[1] - xr[1], x[2] - xr[2]];
-        let j = jacobian(t, coords, &xi);
+        let r = Vector3::from(*x) - Vector3::from(map_to_real(t, coords, &xi));
+        let j = matrix3(&jacobian(t, coords, &xi));
         let g = gram(&j, dim);
-        let mut rhs = [0.0; 3];
-        for (a, v) in rhs.iter_mut().enumerate().take(dim) {
-            *v = (0..3).map(|i| j[i][a] * r[i]).sum();
-        }
-        let d = solve_small(g, rhs, dim, h * h).ok_or(InverseMapError::SingularJacobian { xi })?;
-        step = (0..dim).map(|k| d[k] * d[k]).sum::<f64>().sqrt();
+        let rhs = Vector3::from_fn(|a, _| if a < dim { j.column(a).dot(&r) } else { 0.0 });
+        let d = solve_small(&g, &rhs, dim, h * h).ok_or(InverseMapError::SingularJacobian { xi })?;
+        step = d.rows(0, dim).norm();
         // Damp overly long steps (the reference domains have size ~2).
         let damp = if step > 1.0 { 1.0 / step } else { 1.0 };
         for k in 0..dim {
@@ -761,8 +781,7 @@ pub fn inverse_map(
             return Err(InverseMapError::NotConverged { xi, iterations: it, step });
         }
         if step <= opts.tol {
-            let xr = map_to_real(t, coords, &xi);
-            let distance = ((0..3).map(|k| (x[k] - xr[k]).powi(2)).sum::<f64>()).sqrt();
+            let distance = (Vector3::from(*x) - Vector3::from(map_to_real(t, coords, &xi))).norm();
             let excess = outside_distance(t, &xi);
             if excess > opts.outside_tol {
                 return Err(InverseMapError::Outside { xi, excess, distance });
@@ -920,7 +939,7 @@ mod tests {
                 if t.dim() == 3 {
                     let det = jacobian_det(t, &coords, &xi, 3);
                     let a = [[2.0, 0.3, -0.4], [0.5, 1.5, 0.2], [-0.1, 0.6, 1.8]];
-                    assert!((det - det3(&a)).abs() < 1e-11, "{}: det {det}", t.name());
+                    assert!((det - matrix3(&a).determinant()).abs() < 1e-11, "{}: det {det}", t.name());
                 }
             }
         }

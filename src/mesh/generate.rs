@@ -241,6 +241,7 @@ fn finish_node_groups(mesh: &mut Mesh) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Vector3;
 
     #[test]
     fn quad4_counts_and_groups() {
@@ -288,13 +289,8 @@ mod tests {
         ] {
             for &ci in &m.cell_groups[name] {
                 let c = &m.cells[ci];
-                let d = |a: usize, b: usize| -> [f64; 3] {
-                    let (p, r) = (m.coords[c[a]], m.coords[c[b]]);
-                    [r[0] - p[0], r[1] - p[1], r[2] - p[2]]
-                };
-                let (e1, e2) = (d(0, 1), d(0, 3));
-                let cross =
-                    [e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]];
+                let d = |a: usize, b: usize| Vector3::from(m.coords[c[b]]) - Vector3::from(m.coords[c[a]]);
+                let cross = d(0, 1).cross(&d(0, 3));
                 assert!(cross[axis] * sign > 0.0, "{name}");
             }
         }

@@ -318,6 +318,7 @@ pub fn prediction_tangent(p: &CzmParams, ndim: usize, lambda: &[f64], w: &[f64],
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::{DMatrix, DVector};
 
     /// wtnv149a's RUPT_FRAG.
     fn params(pena: f64) -> CzmParams {
@@ -575,24 +576,10 @@ mod tests {
             if norm <= 1e-9 * p.sigma_c {
                 return (w, lam, e);
             }
-            // Gaussian elimination with partial pivoting.
-            for c in 0..n {
-                let piv = (c..n).max_by(|&x, &y| a[x][c].abs().total_cmp(&a[y][c].abs())).unwrap();
-                a.swap(c, piv);
-                assert!(a[c][c].abs() > 1e-300, "singular packet system");
-                let pivot_row = a[c].clone();
-                for row in a.iter_mut().skip(c + 1) {
-                    let f = row[c] / pivot_row[c];
-                    for (v, p) in row.iter_mut().zip(&pivot_row).skip(c) {
-                        *v -= f * p;
-                    }
-                }
-            }
-            let mut x = vec![0.0; n];
-            for c in (0..n).rev() {
-                let s: f64 = (c + 1..n).map(|k| a[c][k] * x[k]).sum();
-                x[c] = (a[c][n] - s) / a[c][c];
-            }
+            let x = DMatrix::from_fn(n, n, |i, j| a[i][j])
+                .lu()
+                .solve(&DVector::from_fn(n, |i, _| a[i][n]))
+                .expect("singular packet system");
             for i in 0..ndim {
                 w[i] += x[i];
                 lam[i] += x[ndim + i];

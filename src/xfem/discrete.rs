@@ -11,8 +11,9 @@
 
 use super::model::XfemModel;
 use crate::fem::quadrature::{aster_rule, gauss_legendre, rule_for_degree, QuadratureRule, RefDomain};
-use crate::fem::reference::{jacobian, shape, shape_and_deriv};
+use crate::fem::reference::{jacobian, jacobian_inverse, shape, shape_and_deriv};
 use crate::mesh::{CellType, Mesh};
+use nalgebra::Vector3;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// Unknown numbering of an X-FEM mechanical problem.
@@ -129,34 +130,6 @@ fn b_col(ndim: usize, g: &[f64; 3], i: usize) -> [f64; 6] {
     b
 }
 
-fn inv(j: &[[f64; 3]; 3], dim: usize) -> Option<(f64, [[f64; 3]; 3])> {
-    let mut m = [[0.0; 3]; 3];
-    let det = if dim == 2 {
-        j[0][0] * j[1][1] - j[0][1] * j[1][0]
-    } else {
-        j[0][0] * (j[1][1] * j[2][2] - j[1][2] * j[2][1]) - j[0][1] * (j[1][0] * j[2][2] - j[1][2] * j[2][0])
-            + j[0][2] * (j[1][0] * j[2][1] - j[1][1] * j[2][0])
-    };
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    if dim == 2 {
-        m[0][0] = j[1][1] / det;
-        m[0][1] = -j[0][1] / det;
-        m[1][0] = -j[1][0] / det;
-        m[1][1] = j[0][0] / det;
-    } else {
-        for (r, row) in m.iter_mut().enumerate() {
-            for (c, v) in row.iter_mut().enumerate() {
-                let (r1, r2) = ((c + 1) % 3, (c + 2) % 3);
-                let (c1, c2) = ((r + 1) % 3, (r + 2) % 3);
-                *v = (j[r1][c1] * j[r2][c2] - j[r1][c2] * j[r2][c1]) / det;
-            }
-        }
-    }
-    Some((det, m))
-}
-
 /// Shape gradients in real coordinates of a parent cell at ξ, and |det J|.
 pub fn real_gradients(t: CellType, coords: &[[f64; 3]], xi: &[f64; 3]) -> Option<(Vec<f64>, Vec<[f64; 3]>, f64)> {
     let nno = t.nnodes();
@@ -165,7 +138,8 @@ pub fn real_gradients(t: CellType, coords: &[[f64; 3]], xi: &[f64; 3]) -> Option
     let mut dref = vec![[0.0; 3]; nno];
     shape_and_deriv(t, xi, &mut n, &mut dref);
     let j = jacobian(t, coords, xi);
-    let (det, ij) = inv(&j, dim)?;
+    let (det, ij) = jacobian_inverse(&j, dim);
+    let ij = ij?;
     let g = dref
         .iter()
         .map(|d| {
@@ -227,9 +201,10 @@ pub fn bulk_points(t: CellType, coords: &[[f64; 3]], xm: &XfemModel, cell: usize
                     }
                 }
             }
-            let (dets, _) = inv(&js, dim).ok_or_else(|| format!("degenerate sub-cell {} of the cut cell", s + 1))?;
-            let jp = jacobian(t, coords, &xi);
-            let (detp, _) = inv(&jp, dim).ok_or("degenerate parent cell")?;
+            let (dets, regular) = jacobian_inverse(&js, dim);
+            regular.ok_or_else(|| format!("degenerate sub-cell {} of the cut cell", s + 1))?;
+            let (detp, regular) = jacobian_inverse(&jacobian(t, coords, &xi), dim);
+            regular.ok_or("degenerate parent cell")?;
             out.push(BulkPoint { xi, w: wq * dets.abs() * detp.abs(), region: xc.regions[s] });
         }
     }
@@ -488,20 +463,17 @@ pub fn facet_points(
         // Geometric normal of the facet (not yet oriented) and its measure.
         let geo = if dim == 2 {
             let t0 = real(&tang[0]);
-            [t0[1], -t0[0], 0.0]
+            Vector3::new(t0[1], -t0[0], 0.0)
         } else {
-            let (a, b) = (real(&tang[0]), real(&tang[1]));
-            cross(&a, &b)
+            Vector3::from(real(&tang[0])).cross(&Vector3::from(real(&tang[1])))
         };
-        let measure = dot(&geo, &geo).sqrt();
+        let measure = geo.norm();
         let (_, g, _) = real_gradients(t, coords, &xi).ok_or("degenerate cell")?;
-        let mut gn = [0.0; 3];
+        let mut gn = Vector3::zeros();
         for (a, &nd) in nodes.iter().enumerate() {
-            for k in 0..3 {
-                gn[k] += lsn[nd] * g[a][k];
-            }
+            gn += lsn[nd] * Vector3::from(g[a]);
         }
-        if dot(&gn, &gn) == 0.0 || measure == 0.0 {
+        if gn.norm_squared() == 0.0 || measure == 0.0 {
             return Err("degenerate facet (zero measure or level-set gradient)".into());
         }
         // The facet's own normal, oriented by ∇φ (from the − to the + side):
@@ -509,26 +481,19 @@ pub fn facet_points(
         // sub-cells exactly, also where the discrete interface is curved
         // (level sets adjusted near nodes). On a flat facet it is ∇φ/|∇φ|,
         // Code_Aster's normal.
-        let sgn = if dot(&geo, &gn) < 0.0 { -1.0 } else { 1.0 };
-        let nrm = geo.map(|v| sgn * v / measure);
-        let mut t1 = [1.0 - nrm[0] * nrm[0], -nrm[0] * nrm[1], -nrm[0] * nrm[2]];
-        if dot(&t1, &t1).sqrt() < 1e-8 {
-            t1 = [-nrm[1] * nrm[0], 1.0 - nrm[1] * nrm[1], -nrm[1] * nrm[2]];
+        let sgn = if geo.dot(&gn) < 0.0 { -1.0 } else { 1.0 };
+        let nrm = sgn * geo / measure;
+        // τ1: e_x projected on the tangent plane, (I - n nᵀ) e_x, or e_y's
+        // projection when n ∥ e_x.
+        let mut t1 = Vector3::new(1.0 - nrm[0] * nrm[0], -nrm[0] * nrm[1], -nrm[0] * nrm[2]);
+        if t1.norm() < 1e-8 {
+            t1 = Vector3::new(-nrm[1] * nrm[0], 1.0 - nrm[1] * nrm[1], -nrm[1] * nrm[2]);
         }
-        let l = dot(&t1, &t1).sqrt();
-        let t1 = t1.map(|v| v / l);
-        let t2 = if dim == 3 { cross(&nrm, &t1) } else { [0.0; 3] };
-        out.push(FacetPoint { xi, w: wq * measure, basis: [nrm, t1, t2] });
+        let t1 = t1 / t1.norm();
+        let t2 = if dim == 3 { nrm.cross(&t1) } else { Vector3::zeros() };
+        out.push(FacetPoint { xi, w: wq * measure, basis: [nrm.into(), t1.into(), t2.into()] });
     }
     Ok(out)
-}
-
-pub fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-pub fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 /// The mortar coupling of one crack in one cell: `c` couples the cell's

@@ -49,6 +49,7 @@
 
 use crate::mesh::Mesh;
 use crate::xfem::levelset::{edges, Status};
+use crate::xfem::topose::dist;
 use std::collections::BTreeMap;
 
 /// A cut parent edge: its two end nodes (mesh indices, in the order of the
@@ -280,10 +281,6 @@ pub fn cut_edges(mesh: &Mesh, cells: &[usize], lsn: &[f64], master: Option<(&[f6
     }
     out.extend(vertex_points);
     out
-}
-
-fn dist(p: &[f64; 3], q: &[f64; 3]) -> f64 {
-    p.iter().zip(q).map(|(a, b)| (a - b) * (a - b)).sum::<f64>().sqrt()
 }
 
 /// The criterion of each cut edge (`xlagsp`): distance from its point to the

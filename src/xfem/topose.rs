@@ -21,6 +21,7 @@
 //! in 2D.
 
 use crate::mesh::CellType;
+use nalgebra::Vector3;
 
 /// One crack as a parent cell sees it.
 #[derive(Debug, Clone)]
@@ -118,34 +119,19 @@ pub(super) struct Inter {
     pub(super) node: u32,
 }
 
+pub(super) type V3 = Vector3<f64>;
+
 pub(super) fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+    (V3::from(*a) - V3::from(*b)).norm()
 }
 
 fn mid(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
     [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0, (a[2] + b[2]) / 2.0]
 }
 
-pub(super) fn sub3(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-pub(super) fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-pub(super) fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
 /// Normalised copy (`xnormv`: a zero vector stays zero).
-fn unit(a: &[f64; 3]) -> [f64; 3] {
-    let n = dot(a, a).sqrt();
-    if n > 0.0 {
-        [a[0] / n, a[1] / n, a[2] / n]
-    } else {
-        *a
-    }
+fn xnormv(a: V3) -> V3 {
+    a.try_normalize(0.0).unwrap_or(a)
 }
 
 /// The parent cell and the state of its cutting.
@@ -479,7 +465,7 @@ impl Ctx<'_> {
         for iter in 1..=100 {
             let (xi, dxi) = curve(s);
             let (v, g) = self.lsn_grad(&xi, ifiss);
-            let dv = dot(&g, &dxi);
+            let dv = V3::from(g).dot(&V3::from(dxi));
             if dv == 0.0 || !dv.is_finite() {
                 return None;
             }
@@ -520,9 +506,9 @@ impl Ctx<'_> {
         let (ka, kb) = if im < 2000 {
             (mid(pr, &pta), mid(pr, &ptb))
         } else {
-            let ab = sub3(&ptb, &pta);
-            let aip = sub3(pr, &pta);
-            let s = dot(&aip, &aip).sqrt() / dot(&ab, &ab).sqrt() * dot(&unit(&ab), &unit(&aip));
+            let ab = V3::from(ptb) - V3::from(pta);
+            let aip = V3::from(*pr) - V3::from(pta);
+            let s = aip.norm() / ab.norm() * xnormv(ab).dot(&xnormv(aip));
             let ka = [0, 1, 2]
                 .map(|j| (1.0 - s) * (1.0 - s / 2.0) * pta[j] + s / 2.0 * (s - 1.0) * ptb[j] + s * (2.0 - s) * ptm[j]);
             let kb = [0, 1, 2]
@@ -537,9 +523,9 @@ impl Ctx<'_> {
     /// (in the reference plane) puts it on the interface.
     fn mifis(&self, p1: &Pt, p2: &Pt, ifiss: usize) -> Result<Pt, String> {
         let m = mid(&p1.xi, &p2.xi);
-        let d = sub3(&p2.xi, &p1.xi);
+        let d = V3::from(p2.xi) - V3::from(p1.xi);
         let xi = if self.dim == 2 {
-            let v = unit(&[-d[1], d[0], 0.0]);
+            let v: [f64; 3] = xnormv(V3::new(-d[1], d[0], 0.0)).into();
             let line = |k: f64| ([0, 1, 2].map(|j| m[j] + k * v[j]), v);
             let k = self.newton(0.0, (-f64::MAX, f64::MAX), line, ifiss).unwrap_or(0.0);
             line(k).0
@@ -591,13 +577,13 @@ impl Ctx<'_> {
         let q2 = inter[ip2 - 1].p.xi;
         let pm = mil.get(pm2 - 1).ok_or("TOPOSE: xmilfa: missing mid-point")?.xi;
         let mut ksi = mid(&q1, &ptb);
-        let t1 = unit(&sub3(&ksi, &q1));
-        let t2 = unit(&[0, 1, 2].map(|i| -1.5 * q1[i] - 0.5 * q2[i] + 2.0 * pm[i]));
-        let t3 = unit(&sub3(&pta, &q1));
-        let cosu = dot(&t1, &t2);
+        let t1 = xnormv(V3::from(ksi) - V3::from(q1));
+        let t2 = xnormv(V3::from([0, 1, 2].map(|i| -1.5 * q1[i] - 0.5 * q2[i] + 2.0 * pm[i])));
+        let t3 = xnormv(V3::from(pta) - V3::from(q1));
+        let cosu = t1.dot(&t2);
         // NaN (|cosu| > 1 by round-off) compares false, as in Fortran.
         let mut sinu = (1.0 - cosu * cosu).sqrt();
-        if dot(&t3, &t2) > dot(&t3, &t1) {
+        if t3.dot(&t2) > t3.dot(&t1) {
             sinu = -sinu;
         }
         if sinu < 1e-3 {
@@ -744,11 +730,12 @@ impl Ctx<'_> {
         }
         // Centre of the quadrangle of the interface (xcenfi).
         let pin = |k: usize| inter[k - 1].p.xi;
+        let vin = |k: usize| V3::from(pin(k));
         let pmi = |k: usize| mil.get(k - 1).map(|p| p.xi);
         let mut maxi: f64 = 0.0;
         for (p1, p2, m) in [(1, 2, 9), (2, 4, 10), (3, 4, 11), (1, 3, 12)] {
             let pm = pmi(m).ok_or("TOPOSE: xcenfi: missing mid-point")?;
-            let cosi = dot(&unit(&sub3(&pin(p2), &pin(p1))), &unit(&sub3(&pm, &pin(p1))));
+            let cosi = xnormv(vin(p2) - vin(p1)).dot(&xnormv(V3::from(pm) - vin(p1)));
             if cosi < 1.0 {
                 maxi = maxi.max(cosi.acos());
             }
@@ -924,14 +911,14 @@ impl Ctx<'_> {
             return Ok(());
         }
         for ch in children.iter_mut() {
-            let mut v = [[0.0; 3]; 4];
+            let mut v = [V3::zeros(); 4];
             for (k, vk) in v.iter_mut().enumerate() {
                 if self.is_centre(ch[k]) {
                     return Err("TOPOSE: a centre node is a vertex of a sub-tetrahedron".into());
                 }
-                *vk = self.pt(ch[k], &d.inter, &d.mil)?.x;
+                *vk = V3::from(self.pt(ch[k], &d.inter, &d.mil)?.x);
             }
-            let ps = dot(&cross(&sub3(&v[1], &v[0]), &sub3(&v[2], &v[0])), &sub3(&v[3], &v[0]));
+            let ps = (v[1] - v[0]).cross(&(v[2] - v[0])).dot(&(v[3] - v[0]));
             if ps < 0.0 {
                 ch.swap(2, 3);
                 ch.swap(8, 5);
@@ -1230,10 +1217,9 @@ mod tests {
     }
 
     fn area(cut: &Cutting, s: &SubCell) -> f64 {
-        let p = |k: usize| cut.points[s.nodes[k]].x;
-        let (a, b, c) = (p(0), p(1), p(2));
+        let p = |k: usize| V3::from(cut.points[s.nodes[k]].x);
         // TRIA6 children are not reoriented in 2D (te0514 only checks tetrahedra).
-        (((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) / 2.0).abs()
+        ((p(1) - p(0)).cross(&(p(2) - p(0)))[2] / 2.0).abs()
     }
 
     fn check_straight(cut: &Cutting) {

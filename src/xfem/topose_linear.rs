@@ -22,9 +22,7 @@
 
 use crate::fem::reference::{map_to_real, node_coords, shape, shape_and_deriv};
 use crate::mesh::CellType;
-use crate::xfem::topose::{
-    cross, dist, dot, loncar, master_chain, sub3, CrackInCell, CutPoint, Cutting, Inter, Pt, SubCell,
-};
+use crate::xfem::topose::{dist, loncar, master_chain, CrackInCell, CutPoint, Cutting, Inter, Pt, SubCell, V3};
 
 /// Coincidence tolerance of the point lists (`cridist`), relative to the
 /// parent's characteristic length.
@@ -145,7 +143,7 @@ impl Ctx<'_> {
             return Err("TOPOSE: xinter: equal level sets at the ends of a cut edge".into());
         }
         let s0 = la / (la - lb);
-        let dir = sub3(&pb, &pa);
+        let dir = V3::from(pb) - V3::from(pa);
         let on_edge = |s: f64| -> [f64; 3] {
             let pm = [0, 1, 2].map(|j| (pa[j] + pb[j]) / 2.0);
             let (wa, wm, wb) = (2.0 * (1.0 - s) * (0.5 - s), 4.0 * s * (1.0 - s), 2.0 * s * (s - 0.5));
@@ -159,7 +157,7 @@ impl Ctx<'_> {
             let xi = on_edge(s);
             shape_and_deriv(self.t, &xi, &mut n, &mut dn);
             let f: f64 = n.iter().zip(self.lsn[ifiss]).map(|(a, b)| a * b).sum();
-            let df: f64 = dn.iter().zip(self.lsn[ifiss]).map(|(d, v)| v * dot(d, &dir)).sum();
+            let df: f64 = dn.iter().zip(self.lsn[ifiss]).map(|(d, v)| v * V3::from(*d).dot(&dir)).sum();
             if df.abs() <= 1.0 / f64::MAX || !df.is_finite() {
                 return Err("TOPOSE: xinter: zero derivative of the level set along a cut edge".into());
             }
@@ -452,11 +450,11 @@ impl Ctx<'_> {
             return Ok(());
         }
         for ch in children.iter_mut() {
-            let mut v = [[0.0; 3]; 4];
+            let mut v = [V3::zeros(); 4];
             for (k, vk) in v.iter_mut().enumerate() {
-                *vk = self.pt(ch[k], local)?.x;
+                *vk = V3::from(self.pt(ch[k], local)?.x);
             }
-            let ps = dot(&cross(&sub3(&v[1], &v[0]), &sub3(&v[2], &v[0])), &sub3(&v[3], &v[0]));
+            let ps = (v[1] - v[0]).cross(&(v[2] - v[0])).dot(&(v[3] - v[0]));
             if ps < 0.0 {
                 ch.swap(2, 3);
             }
@@ -558,9 +556,9 @@ pub fn orient_boundary(cut: &mut Cutting, mesh_dim: usize, outward: &[f64; 3]) -
         if sc.nodes.len() != mesh_dim {
             continue;
         }
-        let p = |k: usize| cut.points[sc.nodes[k]].x;
-        let ab = sub3(&p(1), &p(0));
-        let normal = if mesh_dim == 2 { [ab[1], -ab[0], 0.0] } else { cross(&ab, &sub3(&p(2), &p(0))) };
+        let p = |k: usize| V3::from(cut.points[sc.nodes[k]].x);
+        let ab = p(1) - p(0);
+        let normal = if mesh_dim == 2 { V3::new(ab[1], -ab[0], 0.0) } else { ab.cross(&(p(2) - p(0))) };
         let d: f64 = (0..mesh_dim).map(|j| normal[j] * outward[j]).sum();
         if d < 0.0 {
             sc.nodes.swap(mesh_dim - 2, mesh_dim - 1);
@@ -706,14 +704,13 @@ mod tests {
     }
 
     fn area(cut: &Cutting, s: &SubCell) -> f64 {
-        let p = |k: usize| cut.points[s.nodes[k]].x;
-        let (a, b, c) = (p(0), p(1), p(2));
-        ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])) / 2.0
+        let p = |k: usize| V3::from(cut.points[s.nodes[k]].x);
+        (p(1) - p(0)).cross(&(p(2) - p(0)))[2] / 2.0
     }
 
     fn volume(cut: &Cutting, s: &SubCell) -> f64 {
-        let p = |k: usize| cut.points[s.nodes[k]].x;
-        dot(&cross(&sub3(&p(1), &p(0)), &sub3(&p(2), &p(0))), &sub3(&p(3), &p(0))) / 6.0
+        let p = |k: usize| V3::from(cut.points[s.nodes[k]].x);
+        (p(1) - p(0)).cross(&(p(2) - p(0))).dot(&(p(3) - p(0))) / 6.0
     }
 
     fn check_sides(cut: &Cutting) {

@@ -126,8 +126,7 @@ fn to_nodes(mesh: &Mesh, cells: &[Option<Vec<f64>>], ncmp: usize) -> Vec<f64> {
 const SIEQ_COMPONENTS: [&str; 8] = ["VMIS", "TRESCA", "PRIN_1", "PRIN_2", "PRIN_3", "VMIS_SG", "TRSIG", "TRIAX"];
 
 /// Principal stresses (ascending) of a symmetric tensor given as
-/// [xx, yy, zz, xy, (xz, yz)], by cyclic Jacobi rotations (accurate to
-/// rounding even for nearly equal eigenvalues).
+/// [xx, yy, zz, xy, (xz, yz)]: nalgebra's symmetric eigenvalues.
 fn principal(s: &[f64]) -> [f64; 3] {
     let (xz, yz) = if s.len() >= 6 { (s[4], s[5]) } else { (0.0, 0.0) };
     let m = Matrix3::new(s[0], s[3], xz, s[3], s[1], yz, xz, yz, s[2]);

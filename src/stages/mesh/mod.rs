@@ -17,6 +17,7 @@ use crate::diag::Result;
 use crate::med;
 use crate::mesh::{CellType, Mesh};
 use crate::stages::Ctx;
+use nalgebra::Vector3;
 use std::collections::{BTreeMap, HashMap, HashSet};
 use std::fmt::Write as _;
 use std::rc::Rc;
@@ -378,7 +379,7 @@ fn plane_nodes(w: &mut Work, occ: &Args) -> Result<Vec<usize>> {
     } else {
         return Err(occ.err("VECT_NORMALE", "VECT_NORMALE or ANGL_NAUT is required"));
     }
-    let norm = (nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]).sqrt();
+    let norm = Vector3::from(nrm).norm();
     if norm == 0.0 {
         return Err(occ.err("VECT_NORMALE", "the normal vector is zero"));
     }
@@ -505,10 +506,9 @@ fn ordered_line_nodes(w: &mut Work, occ: &Args) -> Result<Vec<usize>> {
     let v = occ.reals("VECT_ORIE");
     if v.iter().any(|x| *x != 0.0) && out.len() >= 3 && out[0] == out[out.len() - 1] {
         let dir = |a: usize, b: usize| -> f64 {
-            let (p, q) = (w.mesh.coords[a], w.mesh.coords[b]);
-            let d: Vec<f64> = (0..3).map(|k| q[k] - p[k]).collect();
-            let len = d.iter().map(|x| x * x).sum::<f64>().sqrt();
-            d.iter().zip(v.iter().chain(std::iter::repeat(&0.0))).map(|(x, y)| x * y).sum::<f64>() / len
+            let d = Vector3::from(w.mesh.coords[b]) - Vector3::from(w.mesh.coords[a]);
+            let orie = Vector3::from_fn(|k, _| v.get(k).copied().unwrap_or(0.0));
+            d.dot(&orie) / d.norm()
         };
         let nb = out.len();
         if dir(out[nb - 1], out[nb - 2]) > dir(out[0], out[1]) {
