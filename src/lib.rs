@@ -6,6 +6,7 @@ pub mod catalog;
 pub mod concepts;
 pub mod diag;
 pub mod fem;
+pub mod hm;
 pub mod interp;
 pub mod med;
 pub mod mesh;
