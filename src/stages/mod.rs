@@ -131,6 +131,7 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "CALC_CHAMP" => fields::calc_champ,
         "CREA_CHAMP" => fields::crea_champ,
         "STAT_NON_LINE" => solve::stat_non_line,
+        "DEFI_LIST_INST" => solve::defi_list_inst,
         "POST_RELEVE_T" => post::post_releve_t,
         "MODI_MAILLAGE" => mesh::orient::modi_maillage,
         "MODI_REPERE" => fields::modi_repere,
