@@ -1,6 +1,7 @@
 //! The solving commands: MECA_STATIQUE (`statics`), STAT_NON_LINE (`nonlinear`), and both on X-FEM models
 //! (`xfem`), all on the shared core of `stages::core`.
 
+pub mod hm;
 pub mod list_inst;
 pub mod nonlinear;
 pub mod statics;

@@ -21,6 +21,10 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         if mo.model()?.xfem.is_some() {
             return super::xfem::stat_non_line_xfem(ctx, a, &mo);
         }
+        let hm = mo.model()?.elements.iter().flatten().any(|e| e.modelisation.is_hm());
+        if hm {
+            return super::hm::stat_non_line_hm(ctx, a, &mo);
+        }
     }
     a.refuse(&["CONTACT", "SCHEMA_THM"])?;
     refuse_unsupported_options(a)?;
