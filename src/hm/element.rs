@@ -326,6 +326,7 @@ pub struct ElementOutput {
 
 /// The element's internal forces and tangent for the local unknowns `ue` at the end of the step,
 /// from the states `prev` of its points at the start.
+#[allow(clippy::needless_range_loop)]
 pub fn element(
     cp: &CellPoints,
     mat: &Biot,
@@ -350,27 +351,35 @@ pub fn element(
         let trace = |a: usize, i: usize| bs[a][0][i] + bs[a][1][i] + bs[a][2][i];
         if pt.role.mech {
             let sig: [f64; 6] = std::array::from_fn(|c| s.sig[c] + s.sigp[c]);
+            // D B of every node, and the weight of the added fluid mass's derivative.
+            let db: Vec<[[f64; 3]; 6]> = bs
+                .iter()
+                .map(|b| std::array::from_fn(|c| std::array::from_fn(|j| (0..6).map(|e| d[c][e] * b[e][j]).sum())))
+                .collect();
+            let gm = g.iter().any(|x| *x != 0.0);
             for a in 0..nno {
                 for i in 0..dim {
                     let r = cp.u(a, i);
                     fint[r] += w * ((0..6).map(|c| bs[a][c][i] * sig[c]).sum::<f64>() - pt.n[a] * g[i] * s.m);
+                    // The strain components this unknown acts on (B is sparse).
+                    let nz: Vec<(usize, f64)> =
+                        (0..6).filter(|&c| bs[a][c][i] != 0.0).map(|c| (c, bs[a][c][i])).collect();
+                    let row = &mut k[r * nd..(r + 1) * nd];
                     // K_uu: Bᵀ D B − N g ∂M/∂ε_v (m·B).
                     for b in 0..nno {
+                        let col = cp.first[b];
                         for j in 0..dim {
-                            let mut v = 0.0;
-                            for c in 0..6 {
-                                if bs[a][c][i] != 0.0 {
-                                    v += bs[a][c][i] * (0..6).map(|e| d[c][e] * bs[b][e][j]).sum::<f64>();
-                                }
+                            let mut v: f64 = nz.iter().map(|&(c, bv)| bv * db[b][c][j]).sum();
+                            if gm {
+                                v -= pt.n[a] * g[i] * dm_depsv * trace(b, j);
                             }
-                            v -= pt.n[a] * g[i] * dm_depsv * trace(b, j);
-                            k[r * nd + cp.u(b, j)] += w * v;
+                            row[col + j] += w * v;
                         }
                     }
                     // K_up: Bᵀ (∂σ_p/∂p m) N̂ − N g ∂M/∂p N̂.
                     let bm = trace(a, i);
                     for jv in 0..nv {
-                        k[r * nd + cp.p(jv)] += w * (bm * dsigp_dp - pt.n[a] * g[i] * dm_dp) * pt.nh[jv];
+                        row[cp.p(jv)] += w * (bm * dsigp_dp - pt.n[a] * g[i] * dm_dp) * pt.nh[jv];
                     }
                 }
             }
