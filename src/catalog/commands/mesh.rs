@@ -360,7 +360,8 @@ fn crea_maillage() -> Command {
                 tout("TOUT"),
                 names("MAILLE"),
                 names("GROUP_MA"),
-                simp("PREF_MAILLE").txt().o(),
+                // 2020 syntax (mandatory then), gone in 2025.
+                simp("PREF_MAILLE").txt(),
                 simp("PREF_NUME").i(),
             ]
         )
@@ -412,7 +413,8 @@ fn crea_maillage() -> Command {
                 simp("NOM").txt().o(),
                 simp("GROUP_NO_1").txt().o(),
                 simp("GROUP_NO_2").txt().o(),
-                simp("PREF_MAILLE").txt().o(),
+                // 2020 syntax (mandatory then), gone in 2025.
+                simp("PREF_MAILLE").txt(),
                 simp("PREF_NUME").i().d(1),
             ]
         )

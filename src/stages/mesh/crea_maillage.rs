@@ -4,14 +4,18 @@
 //! ([`crate::mesh::convert`]): new nodes are `N` + number, as Code_Aster 2025 shows nodes of meshes
 //! without names. A LINE_QUAD occurrence that gives PREF_NOEUD or PREF_NUME (keywords of the 2020
 //! syntax, gone in 2025) gets the 2020 operator instead: its numbering and the names PREF_NOEUD +
-//! (PREF_NUME − 1 + k). The other operations stop by name until they are implemented.
+//! (PREF_NUME − 1 + k). CREA_MAILLE, CREA_POI1, MODI_MAILLE OPTION='QUAD8_9' and RESTREINT follow
+//! `op0167` and `rdtmai` ([`crate::mesh::derive`]); their 2020 naming keywords (PREF_MAILLE,
+//! PREF_NOEUD, PREF_NUME) are refused by name. The other operations stop by name until they are
+//! implemented.
 
 use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
 use crate::diag::Result;
 use crate::mesh::convert::{self, Converted};
-use crate::mesh::Mesh;
-use crate::stages::select::select_cells;
+use crate::mesh::derive::{self, Groups};
+use crate::mesh::{CellType, Mesh};
+use crate::stages::select::{select_cells, select_nodes};
 use crate::stages::Ctx;
 use std::collections::HashSet;
 use std::fmt::Write as _;
@@ -19,10 +23,6 @@ use std::rc::Rc;
 
 /// Operations and keywords of CREA_MAILLAGE not implemented yet.
 const NOT_YET: &[&str] = &[
-    "CREA_POI1",
-    "CREA_MAILLE",
-    "RESTREINT",
-    "MODI_MAILLE",
     "HEXA20_27",
     "COQU_VOLU",
     "CREA_FISS",
@@ -45,6 +45,14 @@ pub fn crea_maillage(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         line_quad(&mesh, occ, &label, &mut mess)?
     } else if let Some(occ) = a.fact("QUAD_LINE") {
         quad_line(&mesh, occ, &label, &mut mess)?
+    } else if a.has("CREA_MAILLE") {
+        crea_maille(&mesh, a.facts("CREA_MAILLE"), &label, &mut mess)?
+    } else if a.has("CREA_POI1") {
+        crea_poi1(&mesh, a.facts("CREA_POI1"), &label, &mut mess)?
+    } else if a.has("MODI_MAILLE") {
+        modi_maille(&mesh, a.facts("MODI_MAILLE"), &label, &mut mess)?
+    } else if let Some(occ) = a.fact("RESTREINT") {
+        restreint(&mesh, occ, &label, &mut mess)?
     } else {
         // The catalogue asks for exactly one operation and the others are refused above.
         return Err(a.err("MAILLAGE", "no operation given"));
@@ -137,4 +145,133 @@ fn quad_line(mesh: &Mesh, occ: &Args, label: &str, mess: &mut String) -> Result<
         conv.mesh.nnodes()
     );
     Ok(conv.mesh)
+}
+
+/// A new group of cells must not exist yet (MESH1_20), in the mesh or from an earlier occurrence.
+fn new_group(mesh: &Mesh, taken: &mut HashSet<String>, occ: &Args, kw: &str, name: &str, label: &str) -> Result<()> {
+    if mesh.cell_groups.contains_key(name) || !taken.insert(name.to_string()) {
+        return Err(occ.err(kw, format!("group of cells '{name}' already exists in mesh {label}")));
+    }
+    Ok(())
+}
+
+/// New cells (from `first_cell`) and nodes (from `first_node`) are named `M` / `N` + number: no
+/// cell or node of a mesh that carried its own names may have one of these names.
+fn check_new_names(mesh: &Mesh, out: &Mesh, first_cell: usize, first_node: usize, occ: &Args, kw: &str) -> Result<()> {
+    let cells: HashSet<&str> = mesh.cell_names.iter().map(String::as_str).collect();
+    if let Some(n) = out.cell_names[first_cell..].iter().find(|n| cells.contains(n.as_str())) {
+        return Err(occ.err(kw, format!("new cell {n}: a cell of the mesh already has this name")));
+    }
+    let nodes: HashSet<&str> = mesh.node_names.iter().map(String::as_str).collect();
+    if let Some(n) = out.node_names[first_node..].iter().find(|n| nodes.contains(n.as_str())) {
+        return Err(occ.err(kw, format!("new node {n}: a node of the mesh already has this name")));
+    }
+    Ok(())
+}
+
+/// CREA_MAILLE: copies of cells, one group (NOM) per occurrence.
+fn crea_maille(mesh: &Mesh, occs: &[Args], label: &str, mess: &mut String) -> Result<Mesh> {
+    let mut taken = HashSet::new();
+    let mut copies = Vec::new();
+    for occ in occs {
+        occ.refuse(&["PREF_MAILLE", "PREF_NUME"])?;
+        let name = occ.req_text("NOM")?.to_string();
+        new_group(mesh, &mut taken, occ, "NOM", &name, label)?;
+        let cells = select_cells(mesh, occ, label)?;
+        if cells.is_empty() {
+            return Err(occ.err("GROUP_MA", "the selection holds no cell"));
+        }
+        copies.push((name, cells));
+    }
+    let out = derive::copy_cells(mesh, &copies);
+    check_new_names(mesh, &out, mesh.ncells(), mesh.nnodes(), &occs[0], "NOM")?;
+    let made: Vec<String> = copies.iter().map(|(g, c)| format!("{g} ({} cells)", c.len())).collect();
+    let _ = writeln!(mess, "CREA_MAILLAGE/CREA_MAILLE on {label}: copies in {}", made.join(", "));
+    Ok(out)
+}
+
+/// CREA_POI1: POI1 cells on the nodes of the occurrences.
+fn crea_poi1(mesh: &Mesh, occs: &[Args], label: &str, mess: &mut String) -> Result<Mesh> {
+    let mut taken = HashSet::new();
+    let mut lists = Vec::new();
+    for occ in occs {
+        let nodes = select_nodes(mesh, occ, label)?;
+        if nodes.is_empty() {
+            let kw = ["GROUP_NO", "NOEUD", "GROUP_MA", "MAILLE", "TOUT"].into_iter().find(|k| occ.has(k));
+            return Err(occ.err(kw.unwrap_or("TOUT"), "the selection holds no node"));
+        }
+        let names = occ.texts("NOM_GROUP_MA");
+        if names.len() > 1 {
+            return Err(occ.err("NOM_GROUP_MA", "one group name per occurrence"));
+        }
+        let group = names.into_iter().next();
+        if let Some(g) = &group {
+            new_group(mesh, &mut taken, occ, "NOM_GROUP_MA", g, label)?;
+        }
+        lists.push((group, nodes));
+    }
+    let out = derive::point_cells(mesh, &lists);
+    check_new_names(mesh, &out, mesh.ncells(), mesh.nnodes(), &occs[0], "NOM_GROUP_MA")?;
+    let _ = writeln!(mess, "CREA_MAILLAGE/CREA_POI1 on {label}: {} POI1 cells created", out.ncells() - mesh.ncells());
+    Ok(out)
+}
+
+/// MODI_MAILLE: OPTION='QUAD8_9' adds a centre node to the QUAD8 cells of each occurrence.
+fn modi_maille(mesh: &Mesh, occs: &[Args], label: &str, mess: &mut String) -> Result<Mesh> {
+    let mut quad8 = Vec::new();
+    for occ in occs {
+        let option = occ.req_text("OPTION")?;
+        match option {
+            "QUAD8_9" => {}
+            "TRIA6_7" | "SEG3_4" => {
+                return Err(
+                    occ.err("OPTION", format!("OPTION='{option}' is not supported yet (no TRIA7 or SEG4 cells)"))
+                )
+            }
+            _ => return Err(occ.err("OPTION", format!("OPTION='{option}' is not supported yet"))),
+        }
+        occ.refuse(&["PREF_NOEUD", "PREF_NUME"])?;
+        let cells = select_cells(mesh, occ, label)?;
+        if cells.is_empty() {
+            return Err(occ.err("GROUP_MA", "the selection holds no cell"));
+        }
+        let mine: Vec<usize> = cells.into_iter().filter(|&c| mesh.cell_types[c] == CellType::Quad8).collect();
+        if mine.is_empty() {
+            let _ =
+                writeln!(mess, " <A> CREA_MAILLAGE: MODI_MAILLE OPTION='{option}': no QUAD8 cell among those given");
+        }
+        quad8.extend(mine);
+    }
+    if quad8.is_empty() {
+        let _ = writeln!(mess, " <A> CREA_MAILLAGE: MODI_MAILLE: no cell modified");
+    }
+    let out = derive::centre_nodes(mesh, &quad8);
+    check_new_names(mesh, &out, mesh.ncells(), mesh.nnodes(), &occs[0], "OPTION")?;
+    let _ = writeln!(mess, "CREA_MAILLAGE/MODI_MAILLE on {label}: {} QUAD8 -> QUAD9", quad8.len());
+    Ok(out)
+}
+
+/// RESTREINT: the mesh of some cells (and nodes), as `rdtmai` builds it.
+fn restreint(mesh: &Mesh, occ: &Args, label: &str, mess: &mut String) -> Result<Mesh> {
+    let cells = select_cells(mesh, occ, label)?;
+    if cells.is_empty() {
+        return Err(occ.err("GROUP_MA", "the selection holds no cell"));
+    }
+    // The nodes of GROUP_NO come after those of the cells (the selection holds both; the cells'
+    // nodes are already numbered by then).
+    let extra = if occ.has("GROUP_NO") { select_nodes(mesh, occ, label)? } else { Vec::new() };
+    let cell_groups =
+        if occ.text("TOUT_GROUP_MA") == Some("OUI") { Groups::All } else { Groups::These(occ.texts("GROUP_MA")) };
+    let node_groups =
+        if occ.text("TOUT_GROUP_NO") == Some("OUI") { Groups::All } else { Groups::These(occ.texts("GROUP_NO")) };
+    let out = derive::restrict(mesh, &cells, &extra, &cell_groups, &node_groups);
+    let _ = writeln!(
+        mess,
+        "CREA_MAILLAGE/RESTREINT on {label}: {} cells and {} nodes kept of {} and {}",
+        out.ncells(),
+        out.nnodes(),
+        mesh.ncells(),
+        mesh.nnodes()
+    );
+    Ok(out)
 }

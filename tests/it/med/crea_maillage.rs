@@ -283,3 +283,141 @@ FIN()
     let m = med::read_mesh(&out, None).unwrap();
     assert_eq!(m.node_names[9..], (5..17).map(|i| format!("NS{i}")).collect::<Vec<_>>()[..]);
 }
+
+/// A 2 x 1 box of QUAD8 cells (SEG3 boundaries M1..M6, QUAD8 M7, M8), written for LIRE_MAILLAGE.
+fn quad8_box(dir: &Path) -> (Mesh, std::path::PathBuf) {
+    let m = box_mesh(CellType::Quad8, &[2, 1], &[2.0, 1.0]).unwrap();
+    let p = dir.join("box8.med");
+    med::write_mesh(&p, &m, "MA").unwrap();
+    (med::read_mesh(&p, None).unwrap(), p)
+}
+
+#[test]
+fn crea_maille_crea_poi1_modi_maille_and_restreint_through_med() {
+    let dir = scratch!("derive");
+    let (input, box_med) = quad8_box(&dir);
+    let units: Vec<(i64, std::path::PathBuf)> = (81..=84).map(|u| (u, dir.join(format!("u{u}.med")))).collect();
+    let mut all_units: Vec<(i64, &Path)> = vec![(20, box_med.as_path())];
+    all_units.extend(units.iter().map(|(u, p)| (*u, p.as_path())));
+    let mess = run_ok(
+        &dir,
+        "derive",
+        r#"DEBUT()
+MA = LIRE_MAILLAGE(UNITE=20)
+M1 = CREA_MAILLAGE(MAILLAGE=MA, CREA_MAILLE=(_F(NOM="COPIE", GROUP_MA="SURFACE"), _F(NOM="UN", MAILLE="M2")))
+M2 = CREA_MAILLAGE(MAILLAGE=MA, CREA_POI1=(_F(NOM_GROUP_MA="PG", GROUP_NO="GAUCHE"), _F(NOEUD=("N1", "N13"))))
+M3 = CREA_MAILLAGE(MAILLAGE=MA, MODI_MAILLE=_F(TOUT="OUI", OPTION="QUAD8_9"))
+M4 = CREA_MAILLAGE(MAILLAGE=MA, RESTREINT=_F(GROUP_MA="DROITE", GROUP_NO="BAS", TOUT_GROUP_NO="OUI"))
+IMPR_RESU(FORMAT="MED", UNITE=81, RESU=_F(MAILLAGE=M1))
+IMPR_RESU(FORMAT="MED", UNITE=82, RESU=_F(MAILLAGE=M2))
+IMPR_RESU(FORMAT="MED", UNITE=83, RESU=_F(MAILLAGE=M3))
+IMPR_RESU(FORMAT="MED", UNITE=84, RESU=_F(MAILLAGE=M4))
+FIN()
+"#,
+        &all_units,
+    );
+    assert!(mess.contains("CREA_MAILLAGE/CREA_MAILLE on MA: copies in COPIE (2 cells), UN (1 cells)"), "{mess}");
+    let read = |u: i64, name: &str| med::read_mesh(&units[(u - 81) as usize].1, Some(name)).unwrap();
+
+    // Read back, cells come type by type: the names written by IMPR_RESU tell them apart.
+    let cell = |m: &Mesh, name: &str| m.cell_names.iter().position(|n| n == name).unwrap();
+    let names = |m: &Mesh, cells: &[usize]| cells.iter().map(|&c| m.cell_names[c].clone()).collect::<Vec<_>>();
+
+    // CREA_MAILLE: M9, M10 copy M7, M8 (group COPIE), M11 copies M2 (group UN).
+    let m1 = read(81, "M1");
+    assert_eq!(m1.ncells(), 11);
+    for (copy, of) in [("M9", 6), ("M10", 7), ("M11", 1)] {
+        assert_eq!(m1.cells[cell(&m1, copy)], input.cells[of], "{copy}");
+        assert_eq!(m1.cell_types[cell(&m1, copy)], input.cell_types[of], "{copy}");
+    }
+    assert_eq!(names(&m1, &m1.cell_groups["COPIE"]), ["M9", "M10"]);
+    assert_eq!(names(&m1, &m1.cell_groups["UN"]), ["M11"]);
+
+    // CREA_POI1: POI1 on the nodes of GAUCHE and N13, in node order, numbered after the 8 cells; the
+    // POI1 cells come first when read back (POI1 is Code_Aster's first type).
+    let m2 = read(82, "M2");
+    let gauche = &input.node_groups["GAUCHE"];
+    let mut on: Vec<usize> = gauche.clone();
+    on.push(12);
+    on.sort();
+    on.dedup();
+    assert_eq!(m2.ncells(), 8 + on.len());
+    let pois: Vec<(String, usize)> = (0..m2.ncells())
+        .filter(|&c| m2.cell_types[c] == CellType::Poi1)
+        .map(|c| (m2.cell_names[c].clone(), m2.cells[c][0]))
+        .collect();
+    let want: Vec<(String, usize)> = on.iter().enumerate().map(|(k, &n)| (format!("M{}", 9 + k), n)).collect();
+    assert_eq!(pois, want);
+    let pg: Vec<usize> = m2.cell_groups["PG"].iter().map(|&c| m2.cells[c][0]).collect();
+    assert_eq!(&pg, gauche);
+
+    // MODI_MAILLE QUAD8_9: centres N14 (M7) and N15 (M8) at the middle of each square.
+    let m3 = read(83, "M3");
+    assert_eq!(m3.nnodes(), input.nnodes() + 2);
+    assert_eq!(m3.cell_types[6..], [CellType::Quad9, CellType::Quad9]);
+    assert_eq!((m3.cells[6][8], m3.cells[7][8]), (13, 14));
+    assert_eq!(m3.node_names[13..], ["N14", "N15"]);
+    assert_eq!(m3.coords[13], [0.5, 0.5, 0.0]);
+    assert_eq!(m3.coords[14], [1.5, 0.5, 0.0]);
+
+    // RESTREINT: the SEG3 of DROITE (nodes in its local order), then the nodes of BAS in increasing order.
+    let m4 = read(84, "M4");
+    assert_eq!(m4.ncells(), 1);
+    assert_eq!(m4.cell_names, ["M1"]);
+    let seg = &input.cells[input.cell_groups["DROITE"][0]];
+    let mut order: Vec<usize> = seg.clone();
+    order.extend(input.node_groups["BAS"].iter().filter(|n| !seg.contains(n)));
+    let coords: Vec<[f64; 3]> = order.iter().map(|&n| input.coords[n]).collect();
+    assert_eq!(m4.coords, coords);
+    assert_eq!(m4.cell_groups.keys().collect::<Vec<_>>(), ["DROITE"]);
+    // TOUT_GROUP_NO: every node group with a kept node, reduced to those (MED keeps no member order).
+    for (g, members) in &input.node_groups {
+        let mut kept: Vec<usize> = members.iter().filter_map(|n| order.iter().position(|o| o == n)).collect();
+        kept.sort_unstable();
+        assert_eq!(m4.node_groups.get(g).cloned().unwrap_or_default(), kept, "{g}");
+    }
+    assert_eq!(m4.node_groups["DROITE"], vec![0, 1, 2]);
+}
+
+#[test]
+fn derived_meshes_refuse_2020_naming_and_missing_cell_types() {
+    let dir = scratch!("derive_errors");
+    let (_, box_med) = quad8_box(&dir);
+    let cases = [
+        (
+            "pref",
+            r#"M = CREA_MAILLAGE(MAILLAGE=MA, CREA_MAILLE=_F(NOM="C", TOUT="OUI", PREF_MAILLE="MS"))"#,
+            "CREA_MAILLE/PREF_MAILLE: not supported yet",
+        ),
+        (
+            "tria7",
+            r#"M = CREA_MAILLAGE(MAILLAGE=MA, MODI_MAILLE=_F(TOUT="OUI", OPTION="TRIA6_7"))"#,
+            "MODI_MAILLE/OPTION: OPTION='TRIA6_7' is not supported yet",
+        ),
+        (
+            "exists",
+            r#"M = CREA_MAILLAGE(MAILLAGE=MA, CREA_MAILLE=_F(NOM="SURFACE", TOUT="OUI"))"#,
+            "CREA_MAILLE/NOM: group of cells 'SURFACE' already exists in mesh MA",
+        ),
+        (
+            "twice",
+            r#"M = CREA_MAILLAGE(MAILLAGE=MA, CREA_POI1=(_F(NOM_GROUP_MA="P", TOUT="OUI"), _F(NOM_GROUP_MA="P", NOEUD="N1")))"#,
+            "CREA_POI1/NOM_GROUP_MA: group of cells 'P' already exists",
+        ),
+        (
+            "nonode",
+            r#"M = CREA_MAILLAGE(MAILLAGE=MA, CREA_POI1=_F(NOEUD="N99"))"#,
+            "CREA_POI1/NOEUD: node 'N99' is not in mesh MA",
+        ),
+        ("hexa27", r#"M = CREA_MAILLAGE(MAILLAGE=MA, HEXA20_27=_F(TOUT="OUI"))"#, "HEXA20_27: not supported yet"),
+    ];
+    for (tag, call, want) in cases {
+        let src = format!("DEBUT()\nMA = LIRE_MAILLAGE(UNITE=20)\n{call}\nFIN()\n");
+        let o = run_comm(&dir, tag, &src, &[(20, &box_med)]);
+        let (out, err) = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{tag}: {out}{err}");
+        let all = format!("{out}{err}");
+        assert!(all.contains(want), "{tag}: expected '{want}' in:\n{all}");
+        assert!(all.contains(&format!("{tag}.comm:3:")), "{tag}: not located:\n{all}");
+    }
+}
