@@ -64,14 +64,23 @@ pub fn crea_maillage(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     Ok(Some(ConceptData::Mesh(Rc::new(out))))
 }
 
-/// The cells of a TOUT / GROUP_MA / MAILLE occurrence (none is an error, as in `getelem`), with
-/// Code_Aster's alarm when they are not all the cells of the mesh.
-fn cells_of(mesh: &Mesh, occ: &Args, label: &str, what: &str, mess: &mut String) -> Result<Vec<usize>> {
+/// The cells of an occurrence whose TOUT / GROUP_MA / MAILLE default to the whole mesh (Code_Aster
+/// 2025's `UN_PARMI("TOUT", "GROUP_MA", TOUT="OUI")`); an empty selection is an error, as in `getelem`.
+fn cells_or_all(mesh: &Mesh, occ: &Args, label: &str) -> Result<Vec<usize>> {
+    if !["TOUT", "GROUP_MA", "MAILLE"].iter().any(|k| occ.has(k)) {
+        return Ok((0..mesh.ncells()).collect());
+    }
     let cells = select_cells(mesh, occ, label)?;
     if cells.is_empty() {
-        let kw = ["GROUP_MA", "MAILLE", "TOUT"].into_iter().find(|k| occ.has_if_declared(k)).unwrap_or("TOUT");
+        let kw = ["GROUP_MA", "MAILLE"].into_iter().find(|k| occ.has(k)).unwrap_or("TOUT");
         return Err(occ.err(kw, "the selection holds no cell"));
     }
+    Ok(cells)
+}
+
+/// [`cells_or_all`], with Code_Aster's alarm when they are not all the cells of the mesh.
+fn cells_of(mesh: &Mesh, occ: &Args, label: &str, what: &str, mess: &mut String) -> Result<Vec<usize>> {
+    let cells = cells_or_all(mesh, occ, label)?;
     if cells.len() != mesh.ncells() {
         let _ = writeln!(
             mess,
@@ -119,7 +128,10 @@ fn line_quad(mesh: &Mesh, occ: &Args, label: &str, mess: &mut String) -> Result<
     let old: HashSet<&str> = mesh.node_names.iter().map(String::as_str).collect();
     if let Some(n) = out.node_names[conv.first_new..].iter().find(|n| old.contains(n.as_str())) {
         let kw = if syntax_2020 { "PREF_NOEUD" } else { "TOUT" };
-        return Err(occ.err(kw, format!("new node {n}: a node of mesh {label} already has this name")));
+        return Err(occ.err(
+            kw,
+            format!("new node {n}: a node of mesh {label} already has this name (its file named the nodes)"),
+        ));
     }
     let _ = write!(mess, "CREA_MAILLAGE/LINE_QUAD on {label}: {}", conversions(&conv));
     if created > 0 {
@@ -160,11 +172,15 @@ fn new_group(mesh: &Mesh, taken: &mut HashSet<String>, occ: &Args, kw: &str, nam
 fn check_new_names(mesh: &Mesh, out: &Mesh, first_cell: usize, first_node: usize, occ: &Args, kw: &str) -> Result<()> {
     let cells: HashSet<&str> = mesh.cell_names.iter().map(String::as_str).collect();
     if let Some(n) = out.cell_names[first_cell..].iter().find(|n| cells.contains(n.as_str())) {
-        return Err(occ.err(kw, format!("new cell {n}: a cell of the mesh already has this name")));
+        return Err(
+            occ.err(kw, format!("new cell {n}: a cell of the mesh already has this name (its file named the cells)"))
+        );
     }
     let nodes: HashSet<&str> = mesh.node_names.iter().map(String::as_str).collect();
     if let Some(n) = out.node_names[first_node..].iter().find(|n| nodes.contains(n.as_str())) {
-        return Err(occ.err(kw, format!("new node {n}: a node of the mesh already has this name")));
+        return Err(
+            occ.err(kw, format!("new node {n}: a node of the mesh already has this name (its file named the nodes)"))
+        );
     }
     Ok(())
 }
@@ -177,11 +193,7 @@ fn crea_maille(mesh: &Mesh, occs: &[Args], label: &str, mess: &mut String) -> Re
         occ.refuse(&["PREF_MAILLE", "PREF_NUME"])?;
         let name = occ.req_text("NOM")?.to_string();
         new_group(mesh, &mut taken, occ, "NOM", &name, label)?;
-        let cells = select_cells(mesh, occ, label)?;
-        if cells.is_empty() {
-            return Err(occ.err("GROUP_MA", "the selection holds no cell"));
-        }
-        copies.push((name, cells));
+        copies.push((name, cells_or_all(mesh, occ, label)?));
     }
     let out = derive::copy_cells(mesh, &copies);
     check_new_names(mesh, &out, mesh.ncells(), mesh.nnodes(), &occs[0], "NOM")?;

@@ -308,6 +308,9 @@ M1 = CREA_MAILLAGE(MAILLAGE=MA, CREA_MAILLE=(_F(NOM="COPIE", GROUP_MA="SURFACE")
 M2 = CREA_MAILLAGE(MAILLAGE=MA, CREA_POI1=(_F(NOM_GROUP_MA="PG", GROUP_NO="GAUCHE"), _F(NOEUD=("N1", "N13"))))
 M3 = CREA_MAILLAGE(MAILLAGE=MA, MODI_MAILLE=_F(TOUT="OUI", OPTION="QUAD8_9"))
 M4 = CREA_MAILLAGE(MAILLAGE=MA, RESTREINT=_F(GROUP_MA="DROITE", GROUP_NO="BAS", TOUT_GROUP_NO="OUI"))
+# Code_Aster 2025: no TOUT / GROUP_MA means TOUT='OUI'.
+M5 = CREA_MAILLAGE(MAILLAGE=MA, CREA_MAILLE=_F(NOM="TOUTES"))
+M6 = CREA_MAILLAGE(MAILLAGE=MA, QUAD_LINE=_F())
 IMPR_RESU(FORMAT="MED", UNITE=81, RESU=_F(MAILLAGE=M1))
 IMPR_RESU(FORMAT="MED", UNITE=82, RESU=_F(MAILLAGE=M2))
 IMPR_RESU(FORMAT="MED", UNITE=83, RESU=_F(MAILLAGE=M3))
@@ -317,6 +320,12 @@ FIN()
         &all_units,
     );
     assert!(mess.contains("CREA_MAILLAGE/CREA_MAILLE on MA: copies in COPIE (2 cells), UN (1 cells)"), "{mess}");
+    assert!(mess.contains("CREA_MAILLAGE/CREA_MAILLE on MA: copies in TOUTES (8 cells)"), "{mess}");
+    assert!(
+        mess.contains("CREA_MAILLAGE/QUAD_LINE on MA: 6 SEG3 -> SEG2, 2 QUAD8 -> QUAD4; 7 nodes removed"),
+        "{mess}"
+    );
+    assert!(!mess.contains("QUAD_LINE changes"), "{mess}");
     let read = |u: i64, name: &str| med::read_mesh(&units[(u - 81) as usize].1, Some(name)).unwrap();
 
     // Read back, cells come type by type: the names written by IMPR_RESU tell them apart.
