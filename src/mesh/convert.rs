@@ -280,6 +280,163 @@ pub fn quad_to_line(mesh: &Mesh, cells: &[usize]) -> Converted {
     Converted { mesh: out, first_new: nn - removed, counts, removed }
 }
 
+/// The quadrangular faces of a quadratic volume as Code_Aster lists them (`numbering_face`, 0-based):
+/// 4 vertices then 4 middle nodes, in the face's own order.
+fn quad_faces(t: CellType) -> &'static [[usize; 8]] {
+    use CellType::*;
+    match t {
+        Hexa20 | Hexa27 => &[
+            [0, 3, 2, 1, 11, 10, 9, 8],
+            [0, 1, 5, 4, 8, 13, 16, 12],
+            [1, 2, 6, 5, 9, 14, 17, 13],
+            [2, 3, 7, 6, 10, 15, 18, 14],
+            [0, 4, 7, 3, 12, 19, 15, 11],
+            [4, 5, 6, 7, 16, 17, 18, 19],
+        ],
+        Penta15 => &[[0, 1, 4, 3, 6, 10, 12, 9], [1, 2, 5, 4, 7, 11, 13, 10], [0, 3, 5, 2, 9, 14, 11, 8]],
+        Pyram13 => &[[0, 3, 2, 1, 8, 7, 6, 5]],
+        Quad8 | Quad9 => &[[0, 1, 2, 3, 4, 5, 6, 7]],
+        _ => &[],
+    }
+}
+
+/// The centre node of a face or a volume while the cells are walked.
+#[derive(Clone, Copy)]
+enum Centre {
+    Old(usize),
+    /// The k-th centre created.
+    New(usize),
+}
+
+/// What the k-th created centre is the centre of: the nodes of a QUAD8 face in its order, or a HEXA20.
+enum Made {
+    Face([usize; 8]),
+    Volume(usize),
+}
+
+/// HEXA20_27 as Code_Aster 2025 does it (`cm2027`): the QUAD8 cells among `cells` become QUAD9 and the
+/// HEXA20 cells HEXA27, with a node at the centre of each quadrangular face and of each hexahedron.
+/// The module walks the cells in its type groups (see the module documentation) and creates the centre
+/// of a face the first time it meets it (a QUAD9 cell or a HEXA27 brings its own), then the centre of
+/// the volume; centres used by a converted cell are numbered after the nodes of the mesh in that order.
+/// A centre sits where the QUAD8 / HEXA20 shape functions put the middle of the reference cell.
+pub fn hexa20_to_27(mesh: &Mesh, cells: &[usize]) -> Converted {
+    let mut order: Vec<usize> = (0..mesh.ncells()).collect();
+    order.sort_by_key(|&c| visit_group(mesh.cell_types[c]));
+    // Faces by sorted vertices: (sorted middle nodes, centre), first created first.
+    let mut faces: HashMap<[usize; 4], Vec<([usize; 4], Centre)>> = HashMap::new();
+    let mut volumes: HashMap<Vec<usize>, Centre> = HashMap::new();
+    let mut made: Vec<Made> = Vec::new();
+    let sorted4 = |a: &[usize]| {
+        let mut k = [a[0], a[1], a[2], a[3]];
+        k.sort_unstable();
+        k
+    };
+    for &c in &order {
+        let t = mesh.cell_types[c];
+        let nodes = &mesh.cells[c];
+        for (i, f) in quad_faces(t).iter().enumerate() {
+            let fnodes: [usize; 8] = f.map(|k| nodes[k]);
+            let (verts, mids) = (sorted4(&fnodes[..4]), sorted4(&fnodes[4..]));
+            let list = faces.entry(verts).or_default();
+            if list.iter().any(|(m, _)| *m == mids) {
+                continue;
+            }
+            let centre = match t {
+                CellType::Quad9 => Centre::Old(nodes[8]),
+                CellType::Hexa27 => Centre::Old(nodes[20 + i]),
+                _ => {
+                    made.push(Made::Face(fnodes));
+                    Centre::New(made.len() - 1)
+                }
+            };
+            list.push((mids, centre));
+        }
+        if matches!(t, CellType::Hexa20 | CellType::Hexa27) {
+            let mut key = nodes[..8].to_vec();
+            key.sort_unstable();
+            volumes.entry(key).or_insert_with(|| {
+                if t == CellType::Hexa27 {
+                    Centre::Old(nodes[26])
+                } else {
+                    made.push(Made::Volume(c));
+                    Centre::New(made.len() - 1)
+                }
+            });
+        }
+    }
+    let face_centre = |fnodes: [usize; 8]| {
+        let (verts, mids) = (sorted4(&fnodes[..4]), sorted4(&fnodes[4..]));
+        faces[&verts].iter().find(|(m, _)| *m == mids).map(|(_, c)| *c).expect("every face was walked")
+    };
+    let volume_centre = |c: usize| {
+        let mut key = mesh.cells[c][..8].to_vec();
+        key.sort_unstable();
+        volumes[&key]
+    };
+    // The converted cells and the centres they use.
+    let mut converted: Vec<(usize, Vec<Centre>)> = Vec::new();
+    for &c in cells {
+        let t = mesh.cell_types[c];
+        let nodes = &mesh.cells[c];
+        let centres: Vec<Centre> = match t {
+            CellType::Quad8 | CellType::Hexa20 => {
+                quad_faces(t).iter().map(|f| face_centre(f.map(|k| nodes[k]))).collect()
+            }
+            _ => continue,
+        };
+        let mut centres = centres;
+        if t == CellType::Hexa20 {
+            centres.push(volume_centre(c));
+        }
+        converted.push((c, centres));
+    }
+    let mut used = vec![false; made.len()];
+    for (_, centres) in &converted {
+        for c in centres {
+            if let Centre::New(k) = c {
+                used[*k] = true;
+            }
+        }
+    }
+    let nn = mesh.nnodes();
+    let mut out = mesh.clone();
+    let mut number = vec![usize::MAX; made.len()];
+    for (k, m) in made.iter().enumerate() {
+        if !used[k] {
+            continue;
+        }
+        // Shape functions at the centre of the reference cell, summed node after node as `elrfvf`'s
+        // values are: QUAD8 -1/4 on vertices, 1/2 on middle nodes; HEXA20 -1/4 and 1/4.
+        let (list, w_vertex, w_middle, nv): (Vec<usize>, f64, f64, usize) = match m {
+            Made::Face(f) => (f.to_vec(), -0.25, 0.5, 4),
+            Made::Volume(c) => (mesh.cells[*c][..20].to_vec(), -0.25, 0.25, 8),
+        };
+        let mut p = [0.0; 3];
+        for (i, &n) in list.iter().enumerate() {
+            let w = if i < nv { w_vertex } else { w_middle };
+            for (pk, xk) in p.iter_mut().zip(mesh.coords[n]) {
+                *pk += xk * w;
+            }
+        }
+        number[k] = out.coords.len();
+        out.coords.push(p);
+        out.node_names.push(format!("N{}", out.coords.len()));
+    }
+    let mut counts = BTreeMap::new();
+    for (c, centres) in converted {
+        let t = mesh.cell_types[c];
+        let to = if t == CellType::Quad8 { CellType::Quad9 } else { CellType::Hexa27 };
+        out.cells[c].extend(centres.iter().map(|x| match x {
+            Centre::Old(n) => *n,
+            Centre::New(k) => number[*k],
+        }));
+        out.cell_types[c] = to;
+        *counts.entry((t, to)).or_insert(0) += 1;
+    }
+    Converted { mesh: out, first_new: nn, counts, removed: 0 }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -401,6 +558,56 @@ mod tests {
                 assert_eq!(q.coords[8 + i][k], 0.5 * m.coords[a][k] + 0.5 * m.coords[b][k]);
             }
         }
+    }
+
+    #[test]
+    fn hexa20_27_numbers_face_centres_then_the_volume_centre() {
+        use crate::mesh::generate::box_mesh;
+        // Two HEXA20 along x with their QUAD8 skins (cell order: the skins, then the volumes).
+        let m = box_mesh(CellType::Hexa20, &[2, 1, 1], &[2.0, 1.0, 1.0]).unwrap();
+        let nn = m.nnodes();
+        let all: Vec<usize> = (0..m.ncells()).collect();
+        let c = hexa20_to_27(&m, &all);
+        let q = &c.mesh;
+        let skins = m.cell_types.iter().filter(|&&t| t == CellType::Quad8).count();
+        assert_eq!(skins, 10);
+        // One centre per distinct quadrangle (10 skins + 1 shared inner face) and per hexahedron.
+        assert_eq!(q.nnodes(), nn + 11 + 2);
+        // The skins come first (group of TRIA6/QUAD8), in cell order: their centres are N(nn+1)...
+        let quads: Vec<usize> = (0..m.ncells()).filter(|&i| m.cell_types[i] == CellType::Quad8).collect();
+        for (k, &i) in quads.iter().enumerate() {
+            assert_eq!(q.cell_types[i], CellType::Quad9);
+            assert_eq!(q.cells[i][8], nn + k);
+        }
+        // The first hexahedron: its faces are all known except the inner one, made before its centre.
+        let hexas: Vec<usize> = (0..m.ncells()).filter(|&i| m.cell_types[i] == CellType::Hexa20).collect();
+        let h0 = &q.cells[hexas[0]];
+        assert_eq!(h0.len(), 27);
+        assert_eq!(h0[26], nn + 11, "volume centre after the inner face");
+        assert!(h0[20..26].contains(&(nn + 10)), "the inner face's centre");
+        assert_eq!(q.cells[hexas[1]][26], nn + 12);
+        // Centres at the middle of their face / cell.
+        let mid = |ids: &[usize]| -> [f64; 3] {
+            let mut p = [0.0; 3];
+            for &n in ids {
+                p.iter_mut().zip(q.coords[n]).for_each(|(pk, x)| *pk += x / ids.len() as f64);
+            }
+            p
+        };
+        let close = |a: [f64; 3], b: [f64; 3]| a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-15);
+        for (i, f) in quad_faces(CellType::Hexa20).iter().enumerate() {
+            let verts: Vec<usize> = f[..4].iter().map(|&k| h0[k]).collect();
+            assert!(close(q.coords[h0[20 + i]], mid(&verts)), "face {i}");
+        }
+        assert!(close(q.coords[h0[26]], mid(&h0[..8])));
+        // Only the second hexahedron: the inner face and its own faces and centre are kept, in order.
+        let one = hexa20_to_27(&m, &hexas[1..]).mesh;
+        assert_eq!(one.nnodes(), nn + 7);
+        assert_eq!(one.cells[hexas[1]][26], nn + 6);
+        // Already HEXA27: nothing more.
+        let again = hexa20_to_27(q, &all);
+        assert!(again.counts.is_empty());
+        assert_eq!(again.mesh.nnodes(), q.nnodes());
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! ([`crate::mesh::convert`]): new nodes are `N` + number, as Code_Aster 2025 shows nodes of meshes
 //! without names. A LINE_QUAD occurrence that gives PREF_NOEUD or PREF_NUME (keywords of the 2020
 //! syntax, gone in 2025) gets the 2020 operator instead: its numbering and the names PREF_NOEUD +
-//! (PREF_NUME − 1 + k). CREA_MAILLE, CREA_POI1, MODI_MAILLE OPTION='QUAD8_9' and RESTREINT follow
+//! (PREF_NUME − 1 + k). HEXA20_27 adds face and cell centres with the same module. CREA_MAILLE, CREA_POI1, MODI_MAILLE OPTION='QUAD8_9' and RESTREINT follow
 //! `op0167` and `rdtmai` ([`crate::mesh::derive`]); their 2020 naming keywords (PREF_MAILLE,
 //! PREF_NOEUD, PREF_NUME) are refused by name. The other operations stop by name until they are
 //! implemented.
@@ -22,18 +22,8 @@ use std::fmt::Write as _;
 use std::rc::Rc;
 
 /// Operations and keywords of CREA_MAILLAGE not implemented yet.
-const NOT_YET: &[&str] = &[
-    "HEXA20_27",
-    "COQU_VOLU",
-    "CREA_FISS",
-    "PENTA15_18",
-    "MODI_HHO",
-    "COQUE_SOLIDE",
-    "REPERE",
-    "DECOUPE_LAC",
-    "ECLA_PG",
-    "TITRE",
-];
+const NOT_YET: &[&str] =
+    &["COQU_VOLU", "CREA_FISS", "PENTA15_18", "MODI_HHO", "COQUE_SOLIDE", "REPERE", "DECOUPE_LAC", "ECLA_PG", "TITRE"];
 
 pub fn crea_maillage(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     a.refuse(NOT_YET)?;
@@ -45,6 +35,8 @@ pub fn crea_maillage(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         line_quad(&mesh, occ, &label, &mut mess)?
     } else if let Some(occ) = a.fact("QUAD_LINE") {
         quad_line(&mesh, occ, &label, &mut mess)?
+    } else if let Some(occ) = a.fact("HEXA20_27") {
+        hexa20_27(&mesh, occ, &label, &mut mess)?
     } else if a.has("CREA_MAILLE") {
         crea_maille(&mesh, a.facts("CREA_MAILLE"), &label, &mut mess)?
     } else if a.has("CREA_POI1") {
@@ -144,6 +136,24 @@ fn line_quad(mesh: &Mesh, occ: &Args, label: &str, mess: &mut String) -> Result<
     }
     mess.push('\n');
     Ok(out)
+}
+
+/// HEXA20_27: QUAD8 -> QUAD9 and HEXA20 -> HEXA27 (`cm2027`).
+fn hexa20_27(mesh: &Mesh, occ: &Args, label: &str, mess: &mut String) -> Result<Mesh> {
+    occ.refuse(&["PREF_NOEUD", "PREF_NUME"])?;
+    let cells = cells_of(mesh, occ, label, "HEXA20_27", mess)?;
+    if mesh.cell_types.iter().any(|t| matches!(t, CellType::Penta15 | CellType::Pyram13)) {
+        let _ = writeln!(
+            mess,
+            " <A> CREA_MAILLAGE: HEXA20_27 adds centres to quadrangular faces, but PENTA15 or PYRAM13 cells \
+             keep 8-node faces: the result may not be conforming"
+        );
+    }
+    let conv = convert::hexa20_to_27(mesh, &cells);
+    check_new_names(mesh, &conv.mesh, mesh.ncells(), mesh.nnodes(), occ, "TOUT")?;
+    let created = conv.mesh.nnodes() - conv.first_new;
+    let _ = writeln!(mess, "CREA_MAILLAGE/HEXA20_27 on {label}: {}; {created} nodes created", conversions(&conv));
+    Ok(conv.mesh)
 }
 
 fn quad_line(mesh: &Mesh, occ: &Args, label: &str, mess: &mut String) -> Result<Mesh> {

@@ -418,7 +418,12 @@ fn derived_meshes_refuse_2020_naming_and_missing_cell_types() {
             r#"M = CREA_MAILLAGE(MAILLAGE=MA, CREA_POI1=_F(NOEUD="N99"))"#,
             "CREA_POI1/NOEUD: node 'N99' is not in mesh MA",
         ),
-        ("hexa27", r#"M = CREA_MAILLAGE(MAILLAGE=MA, HEXA20_27=_F(TOUT="OUI"))"#, "HEXA20_27: not supported yet"),
+        (
+            "hexa27",
+            r#"M = CREA_MAILLAGE(MAILLAGE=MA, HEXA20_27=_F(TOUT="OUI", PREF_NOEUD="NS"))"#,
+            "HEXA20_27/PREF_NOEUD: not supported yet",
+        ),
+        ("hho", r#"M = CREA_MAILLAGE(MAILLAGE=MA, MODI_HHO=_F(TOUT="OUI"))"#, "MODI_HHO: not supported yet"),
     ];
     for (tag, call, want) in cases {
         let src = format!("DEBUT()\nMA = LIRE_MAILLAGE(UNITE=20)\n{call}\nFIN()\n");
@@ -429,4 +434,35 @@ fn derived_meshes_refuse_2020_naming_and_missing_cell_types() {
         assert!(all.contains(want), "{tag}: expected '{want}' in:\n{all}");
         assert!(all.contains(&format!("{tag}.comm:3:")), "{tag}: not located:\n{all}");
     }
+}
+
+#[test]
+fn hexa20_27_through_med() {
+    let dir = scratch!("hexa27");
+    let m = box_mesh(CellType::Hexa20, &[2, 1, 1], &[2.0, 1.0, 1.0]).unwrap();
+    let p = dir.join("h20.med");
+    med::write_mesh(&p, &m, "MA").unwrap();
+    let input = med::read_mesh(&p, None).unwrap();
+    let out = dir.join("h27.med");
+    let mess = run_ok(
+        &dir,
+        "h27",
+        r#"DEBUT()
+MA = LIRE_MAILLAGE(UNITE=20)
+MB = CREA_MAILLAGE(MAILLAGE=MA, HEXA20_27=_F())
+IMPR_RESU(FORMAT="MED", UNITE=81, RESU=_F(MAILLAGE=MB))
+FIN()
+"#,
+        &[(20, &p), (81, &out)],
+    );
+    assert!(
+        mess.contains("CREA_MAILLAGE/HEXA20_27 on MA: 10 QUAD8 -> QUAD9, 2 HEXA20 -> HEXA27; 13 nodes created"),
+        "{mess}"
+    );
+    let want = aster::mesh::convert::hexa20_to_27(&input, &(0..input.ncells()).collect::<Vec<_>>()).mesh;
+    let got = med::read_mesh(&out, None).unwrap();
+    assert_eq!(got.coords, want.coords);
+    assert_eq!(got.cells, want.cells);
+    assert_eq!(got.cell_types, want.cell_types);
+    assert_eq!(got.node_names, want.node_names);
 }
