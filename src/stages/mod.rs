@@ -120,6 +120,7 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "TEST_FONCTION" => tests::test_fonction,
         "LIRE_MAILLAGE" => mesh::lire_maillage,
         "DEFI_GROUP" => mesh::defi_group,
+        "CREA_MAILLAGE" => mesh::crea_maillage::crea_maillage,
         "IMPR_RESU" => print::impr_resu,
         "AFFE_MODELE" => model::affe_modele,
         "DEFI_MATERIAU" => material::defi_materiau,
