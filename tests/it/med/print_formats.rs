@@ -400,7 +400,6 @@ fn gmsh_refuses_what_it_does_not_write() {
             "cell fields to GMSH is not supported yet",
         ),
         ("modele", r#"IMPR_RESU(FORMAT="GMSH", MODELE=MO, UNITE=82, RESU=_F(RESULTAT=RESU))"#, "MODELE"),
-        ("list", r#"IMPR_RESU(FORMAT="GMSH", UNITE=82, RESU=_F(RESULTAT=RESU, LIST_INST=L))"#, "LIST_INST"),
     ];
     for (name, body, needle) in cases {
         let r = run(&dir, name, body);
