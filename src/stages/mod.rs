@@ -132,6 +132,7 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "CREA_CHAMP" => fields::crea_champ,
         "STAT_NON_LINE" => solve::stat_non_line,
         "POST_RELEVE_T" => post::post_releve_t,
+        "POST_ERREUR" => post::post_erreur,
         "MODI_MAILLAGE" => mesh::orient::modi_maillage,
         "MODI_REPERE" => fields::modi_repere,
         "DEFI_FISS_XFEM" => xfem::defi_fiss_xfem,
