@@ -97,9 +97,16 @@ enum Cmd {
         /// relative error of the ANALYTIQUE check lines). Default: all found.
         #[arg(long = "error")]
         errors: Vec<String>,
+        /// A knob drawn as curves in the plots, one per setting of the
+        /// other knobs (default: the knobs with the most values).
+        #[arg(long = "curve")]
+        curves: Vec<String>,
         /// Kill a run after this many seconds.
         #[arg(long)]
         time_limit: Option<f64>,
+        /// Run each variant this many times and keep the fastest.
+        #[arg(long, default_value_t = 1)]
+        repeat: usize,
         /// Title of the plots (default: the case's name).
         #[arg(long)]
         title: Option<String>,
@@ -220,8 +227,8 @@ fn study_command(
     units: Vec<String>,
     jobs: usize,
     out: Option<PathBuf>,
-    errors: Vec<String>,
-    time_limit: Option<f64>,
+    (errors, curves): (Vec<String>, Vec<String>),
+    (time_limit, repeat): (Option<f64>, usize),
     title: Option<String>,
     quiet: bool,
 ) -> ExitCode {
@@ -237,7 +244,9 @@ fn study_command(
             jobs,
             out: out.unwrap_or_else(|| PathBuf::from("aster-study")),
             errors,
+            curves,
             time_limit,
+            repeat,
             progress: !quiet,
             title,
         })
@@ -383,8 +392,8 @@ fn main() -> ExitCode {
                 }
             }
         }
-        Cmd::Study { case, knobs, meshes, units, jobs, out, errors, time_limit, title, quiet } => {
-            study_command(case, knobs, meshes, units, jobs, out, errors, time_limit, title, quiet)
+        Cmd::Study { case, knobs, meshes, units, jobs, out, errors, curves, time_limit, repeat, title, quiet } => {
+            study_command(case, knobs, meshes, units, jobs, out, (errors, curves), (time_limit, repeat), title, quiet)
         }
         Cmd::Catalog { markdown } => {
             let cat = catalogue();

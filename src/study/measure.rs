@@ -25,6 +25,8 @@ pub struct Metrics {
     /// The largest relative error of the ANALYTIQUE / SOURCE_EXTERNE check lines (absolute where the
     /// reference is zero), and how many such lines there were.
     pub check_max: Option<f64>,
+    /// The same per legend of the check lines (`check:W`, `check:SIXX`, ...).
+    pub check_by_legend: BTreeMap<String, f64>,
     pub checks: usize,
     pub nook: usize,
     /// The located error of a run that stopped.
@@ -132,6 +134,9 @@ pub fn parse_mess(text: &str, m: &mut Metrics) {
             if let (Ok(refe), Ok(calc)) = (w[n - 4].parse::<f64>(), w[n - 3].parse::<f64>()) {
                 let e = if refe != 0.0 { ((calc - refe) / refe).abs() } else { (calc - refe).abs() };
                 m.check_max = Some(m.check_max.unwrap_or(0.0).max(e));
+                let legend = format!("check:{}", w[2..n - 4].join(" "));
+                let slot = m.check_by_legend.entry(legend).or_insert(0.0);
+                *slot = slot.max(e);
                 m.checks += 1;
                 if w[0] == "NOOK" {
                     m.nook += 1;
@@ -173,5 +178,7 @@ mod tests {
         assert_eq!(m.checks, 3);
         assert_eq!(m.nook, 1);
         assert!((m.check_max.unwrap() - 1e-3).abs() < 1e-12);
+        assert!((m.check_by_legend["check:XXXX"] - 1e-3).abs() < 1e-12);
+        assert_eq!(m.check_by_legend["check:DY"], 1e-9);
     }
 }

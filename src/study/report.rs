@@ -14,6 +14,8 @@ use std::path::Path;
 pub fn error_of(m: &Metrics, key: &str) -> Option<f64> {
     if key == "check" {
         m.check_max
+    } else if key.starts_with("check:") {
+        m.check_by_legend.get(key).copied()
     } else {
         m.errors.get(key).copied()
     }
@@ -60,7 +62,8 @@ impl Axis {
     }
 }
 
-/// The runs on the Pareto front of (cost, error): no other run is both cheaper and more accurate.
+/// The runs on the Pareto front of (cost, error): no other run is both cheaper and more accurate (by
+/// more than 1e-6 relative).
 /// Runs without both values are left out. Returned in increasing cost.
 pub fn pareto(runs: &[Run], key: &str, axis: Axis) -> Vec<usize> {
     let mut pts: Vec<(usize, f64, f64)> = runs
@@ -73,8 +76,9 @@ pub fn pareto(runs: &[Run], key: &str, axis: Axis) -> Vec<usize> {
     pts.sort_by(|a, b| a.1.total_cmp(&b.1).then(a.2.total_cmp(&b.2)));
     let mut front = Vec::new();
     let mut best = f64::INFINITY;
+    // A run whose error is the best one's to 1e-6 (round-off of a tighter tolerance) does not improve it.
     for (i, _, y) in pts {
-        if y < best {
+        if y < best * (1.0 - 1e-6) {
             front.push(i);
             best = y;
         }
@@ -94,6 +98,18 @@ pub fn error_keys(runs: &[Run]) -> Vec<String> {
     }
     if runs.iter().any(|r| r.metrics.check_max.is_some()) {
         keys.push("check".into());
+    }
+    // Per legend, when the check lines have more than one.
+    let mut legends: Vec<String> = Vec::new();
+    for r in runs {
+        for k in r.metrics.check_by_legend.keys() {
+            if !legends.contains(k) {
+                legends.push(k.clone());
+            }
+        }
+    }
+    if legends.len() > 1 {
+        keys.extend(legends);
     }
     keys
 }
@@ -254,14 +270,23 @@ pub fn plot(s: &Study, key: &str, axis: Axis, path: &Path) -> Result<(), String>
         .configure_mesh()
         .x_desc(axis.label())
         .y_desc(if key == "check" { "largest relative check error".to_string() } else { format!("{key} (relative)") })
-        .y_label_formatter(&|v| format!("{v:.0e}"))
-        .x_label_formatter(&|v| if *v >= 1000.0 || *v < 0.01 { format!("{v:.0e}") } else { format!("{v}") })
+        .y_label_formatter(&|v| nice_label(*v))
+        .x_label_formatter(&|v| nice_label(*v))
         .draw()
         .map_err(|e| err(&e))?;
+    // The Pareto front, under the curves.
+    let front: Vec<(f64, f64)> = pareto(&s.runs, key, axis).iter().filter_map(|&i| point(&s.runs[i])).collect();
+    let grey = RGBColor(170, 170, 170);
+    chart
+        .draw_series(LineSeries::new(front.clone(), grey.stroke_width(6)))
+        .map_err(|e| err(&e))?
+        .label("Pareto front")
+        .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], grey.stroke_width(6)));
+    chart.draw_series(front.iter().map(|p| Circle::new(*p, 8, BLACK.stroke_width(1)))).map_err(|e| err(&e))?;
     // One curve per knob: the runs that differ only by that knob's value, in the order of its values.
     let mut colour = 0;
     for (k, knob) in s.knobs.iter().enumerate() {
-        if knob.values.len() < 2 {
+        if !s.curves.contains(&knob.name) {
             continue;
         }
         // (the other knobs' values, [(position of this knob's value, point)]).
@@ -306,14 +331,6 @@ pub fn plot(s: &Study, key: &str, axis: Axis, path: &Path) -> Result<(), String>
             chart.draw_series(xy.iter().map(|p| Circle::new(*p, 3, c.filled()))).map_err(|e| err(&e))?;
         }
     }
-    // The Pareto front.
-    let front: Vec<(f64, f64)> = pareto(&s.runs, key, axis).iter().filter_map(|&i| point(&s.runs[i])).collect();
-    chart
-        .draw_series(LineSeries::new(front.clone(), BLACK.stroke_width(1)))
-        .map_err(|e| err(&e))?
-        .label("Pareto front")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.stroke_width(1)));
-    chart.draw_series(front.iter().map(|p| Circle::new(*p, 7, BLACK.stroke_width(1)))).map_err(|e| err(&e))?;
     chart
         .configure_series_labels()
         .position(SeriesLabelPosition::UpperRight)
@@ -323,6 +340,24 @@ pub fn plot(s: &Study, key: &str, axis: Axis, path: &Path) -> Result<(), String>
         .map_err(|e| err(&e))?;
     root.present().map_err(|e| err(&e))?;
     Ok(())
+}
+
+/// An axis label at 1, 2 and 5 times a power of ten (the others left blank: a log axis has many ticks).
+fn nice_label(v: f64) -> String {
+    if v.is_nan() || v <= 0.0 {
+        return String::new();
+    }
+    let e = v.log10().floor();
+    let m = v / 10f64.powf(e);
+    if ![1.0, 2.0, 5.0].iter().any(|n| (m - n).abs() < 1e-6) {
+        return String::new();
+    }
+    if (-2.0..4.0).contains(&e) {
+        let digits = if e < 0.0 { (-e) as usize } else { 0 };
+        format!("{v:.digits$}")
+    } else {
+        format!("{m:.0}e{e:.0}")
+    }
 }
 
 /// The plot files of a study: `<key>_vs_time.svg` and `<key>_vs_unknowns.svg` per error metric.
