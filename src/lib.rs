@@ -13,5 +13,6 @@ pub mod mesh;
 pub mod runner;
 pub mod solve;
 pub mod stages;
+pub mod study;
 pub mod syntax;
 pub mod xfem;

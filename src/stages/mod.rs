@@ -134,6 +134,7 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "STAT_NON_LINE" => solve::stat_non_line,
         "DEFI_LIST_INST" => solve::defi_list_inst,
         "POST_RELEVE_T" => post::post_releve_t,
+        "POST_ERREUR" => post::post_erreur,
         "MODI_MAILLAGE" => mesh::orient::modi_maillage,
         "MODI_REPERE" => fields::modi_repere,
         "DEFI_FISS_XFEM" => xfem::defi_fiss_xfem,

@@ -8,5 +8,6 @@ mod fem;
 mod language;
 mod legacy;
 mod med;
+mod study;
 mod tidy;
 mod xfem;

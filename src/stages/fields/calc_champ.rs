@@ -167,6 +167,14 @@ pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let chmat = r.material.clone().ok_or_else(|| a.err("RESULTAT", "the result has no material field"))?;
         (r.model.clone(), chmat, r.steps.clone())
     };
+    if model.model()?.xfem.is_some() {
+        // The fields of an X-FEM result live on the sub-cells, with the Heaviside unknowns: the classical
+        // element computations below would ignore the enrichment.
+        return Err(a.err(
+            "RESULTAT",
+            format!("CALC_CHAMP on a result of the X-FEM model {} is not supported yet", model.label()),
+        ));
+    }
     let hm = model.model()?.elements.iter().flatten().any(|e| e.modelisation.is_hm()) && model.model()?.xfem.is_none();
     let mut wanted = Vec::new();
     let kws: &[&str] = if hm {

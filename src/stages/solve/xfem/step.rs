@@ -2,7 +2,7 @@
 //! Newton loop of the core on an `XfemStep`, then the update of the cohesive internal variables.
 
 use super::assemble::{Elements, Law, Lin, Zone};
-use super::report::{depl_fields, label, zone_state};
+use super::report::{depl_fields, label, sief_field, zone_state};
 use super::setup::Setup;
 use crate::catalog::args::Args;
 use crate::concepts::result::Step;
@@ -37,7 +37,7 @@ pub fn run(a: &Args, model: &ConceptRef, s: &Setup, el: &Elements, times: &[f64]
     let mut x = vec![0.0; xd.n];
     let mut run = Run::default();
     if !statics {
-        run.steps.push(Step { nume_ordre: 0, inst: times[0], fields: depl_fields(s, &x) });
+        run.steps.push(Step { nume_ordre: 0, inst: times[0], fields: step_fields(a, s, &x)? });
     }
     // Largest reference force of the converged steps: the scale of the
     // relative criterion once the forces vanish (a fully broken interface).
@@ -110,9 +110,23 @@ pub fn run(a: &Args, model: &ConceptRef, s: &Setup, el: &Elements, times: &[f64]
             crate::interp::format::sci(abs, 3, false)
         );
         run.log.push_str(&zone_state(s, el, &states, &x));
-        run.steps.push(Step { nume_ordre: n as i64, inst: t, fields: depl_fields(s, &x) });
+        run.steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(a, s, &x)? });
     }
     Ok(run)
+}
+
+/// The fields stored at a step: DEPL, and SIEF_ELGA unless MECA_STATIQUE's OPTION='SANS' asks for none
+/// (hydro-mechanical models, whose SIEF_ELGA would also hold the hydraulic stresses, get none yet).
+fn step_fields(
+    a: &Args,
+    s: &Setup,
+    x: &[f64],
+) -> Result<std::collections::BTreeMap<String, crate::concepts::result::Field>> {
+    let mut f = depl_fields(s, x);
+    if !s.hm && a.text_if_declared("OPTION") != Some("SANS") {
+        f.insert("SIEF_ELGA".to_string(), sief_field(a, s, x)?);
+    }
+    Ok(f)
 }
 
 /// One instant's Newton step: the residual and tangent of the bulk, the mortar couplings and the
