@@ -803,8 +803,10 @@ fn factorize_symmetric(
     let ordering = opts.ordering.resolve(n);
     let reused = analysis.as_ref().is_some_and(|an| an.matches(a, &zero, ordering));
     if !reused {
-        let perm = ordering::order(a.symbolic(), ordering).map_err(SolveError::Internal)?;
-        let perm = ordering::defer_multipliers(a.symbolic(), &zero, perm);
+        let (ptr, adj) = ordering::adjacency(a.symbolic());
+        let perm = ordering::order_graph(&ptr, &adj, ordering).map_err(SolveError::Internal)?;
+        let perm = ordering::defer_multipliers(&ptr, &adj, &zero, perm);
+        drop((ptr, adj));
         let mut inv = vec![0usize; n];
         for (k, &p) in perm.iter().enumerate() {
             inv[p] = k;

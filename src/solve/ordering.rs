@@ -44,7 +44,7 @@ impl Ordering {
 }
 
 /// The adjacency of a square pattern without its diagonal, made symmetric (either triangle may be given).
-fn adjacency(a: SymbolicSparseColMatRef<'_, usize>) -> (Vec<usize>, Vec<usize>) {
+pub fn adjacency(a: SymbolicSparseColMatRef<'_, usize>) -> (Vec<usize>, Vec<usize>) {
     let n = a.ncols();
     let (cp, ri) = (a.col_ptr(), a.row_idx());
     let mut deg = vec![0usize; n + 1];
@@ -91,17 +91,22 @@ fn adjacency(a: SymbolicSparseColMatRef<'_, usize>) -> (Vec<usize>, Vec<usize>) 
 
 /// A fill-reducing permutation `perm` (new position → old index) of the symmetric pattern `a`.
 pub fn order(a: SymbolicSparseColMatRef<'_, usize>, ordering: Ordering) -> Result<Vec<usize>, String> {
-    let n = a.ncols();
+    let (ptr, adj) = adjacency(a);
+    order_graph(&ptr, &adj, ordering)
+}
+
+/// [`order`] on the adjacency (from [`adjacency`]) of the pattern.
+pub fn order_graph(ptr: &[usize], adj: &[usize], ordering: Ordering) -> Result<Vec<usize>, String> {
+    let n = ptr.len() - 1;
     match ordering.resolve(n) {
         Ordering::Natural => Ok((0..n).collect()),
-        Ordering::Amd | Ordering::Auto => amd_order(a),
-        Ordering::NestedDissection => nested_dissection(a),
+        Ordering::Amd | Ordering::Auto => amd_order(ptr.to_vec(), adj.to_vec()),
+        Ordering::NestedDissection => nested_dissection(ptr, adj),
     }
 }
 
-fn amd_order(a: SymbolicSparseColMatRef<'_, usize>) -> Result<Vec<usize>, String> {
-    let n = a.ncols();
-    let (ptr, adj) = adjacency(a);
+fn amd_order(ptr: Vec<usize>, adj: Vec<usize>) -> Result<Vec<usize>, String> {
+    let n = ptr.len() - 1;
     // AMD reads the upper triangle of a pattern whose rows may be in any order.
     let sym = faer::sparse::SymbolicSparseColMat::new_checked(n, n, ptr, None, adj);
     let mut perm = vec![0usize; n];
@@ -114,24 +119,18 @@ fn amd_order(a: SymbolicSparseColMatRef<'_, usize>) -> Result<Vec<usize>, String
 
 /// METIS nested dissection on the graph whose consecutive unknowns with identical adjacency (the components
 /// of a node) are merged into one weighted vertex.
-fn nested_dissection(a: SymbolicSparseColMatRef<'_, usize>) -> Result<Vec<usize>, String> {
-    let n = a.ncols();
+fn nested_dissection(ptr: &[usize], adj: &[usize]) -> Result<Vec<usize>, String> {
+    let n = ptr.len() - 1;
     if n <= 1 {
         return Ok((0..n).collect());
     }
-    let (ptr, adj) = adjacency(a);
-    // Supervariables: v joins v-1's group when their closed neighbourhoods coincide.
+    // Supervariables: v joins v-1's group when their closed neighbourhoods coincide, that is when each is
+    // the other's neighbour and their other neighbours are the same (sorted lists, no allocation).
     let closed_eq = |u: usize, v: usize| -> bool {
         let (su, sv) = (&adj[ptr[u]..ptr[u + 1]], &adj[ptr[v]..ptr[v + 1]]);
-        if su.len() != sv.len() || su.binary_search(&v).is_err() {
-            return false;
-        }
-        // N(u) ∪ {u} == N(v) ∪ {v}: compare the merged sorted lists.
-        let mut iu = su.iter().copied().chain(std::iter::once(u)).collect::<Vec<_>>();
-        let mut iv = sv.iter().copied().chain(std::iter::once(v)).collect::<Vec<_>>();
-        iu.sort_unstable();
-        iv.sort_unstable();
-        iu == iv
+        su.len() == sv.len()
+            && su.binary_search(&v).is_ok()
+            && su.iter().filter(|&&w| w != v).eq(sv.iter().filter(|&&w| w != u))
     };
     let mut group = vec![0usize; n];
     let mut starts = vec![0usize];
@@ -164,7 +163,6 @@ fn nested_dissection(a: SymbolicSparseColMatRef<'_, usize>) -> Result<Vec<usize>
         xadj.push(to_i32(adjncy.len())?);
         vwgt.push(to_i32(starts[g + 1] - starts[g])?);
     }
-    drop(adj);
     let mut nv = to_i32(ng)?;
     let mut perm = vec![0i32; ng];
     let mut iperm = vec![0i32; ng];
@@ -200,12 +198,11 @@ fn nested_dissection(a: SymbolicSparseColMatRef<'_, usize>) -> Result<Vec<usize>
 /// pivoting its pivot is then its diagonal minus `b P⁻¹ bᵀ` (b its couplings, P the positive block
 /// around it), negative and nonzero when the multiplier acts on something: a saddle point is factorised
 /// as a quasi-definite matrix would be. Multipliers are few, so the fill hardly changes.
-pub fn defer_multipliers(a: SymbolicSparseColMatRef<'_, usize>, minus: &[bool], perm: Vec<usize>) -> Vec<usize> {
+pub fn defer_multipliers(ptr: &[usize], adj: &[usize], minus: &[bool], perm: Vec<usize>) -> Vec<usize> {
     let n = perm.len();
     if !minus.iter().any(|&z| z) {
         return perm;
     }
-    let (ptr, adj) = adjacency(a);
     let mut pos = vec![0usize; n];
     for (k, &v) in perm.iter().enumerate() {
         pos[v] = k;
@@ -291,7 +288,8 @@ mod tests {
         let mut minus = vec![false; 36];
         minus[0] = true;
         minus[14] = true;
-        let p = defer_multipliers(g.as_ref(), &minus, (0..36).collect());
+        let (ptr, adj) = adjacency(g.as_ref());
+        let p = defer_multipliers(&ptr, &adj, &minus, (0..36).collect());
         assert!(is_perm(&p));
         let pos = |v: usize| p.iter().position(|&x| x == v).unwrap();
         // 0's neighbours are 1 and 6: it comes right after 6.
