@@ -105,8 +105,10 @@ pub fn parse_mess(text: &str, m: &mut Metrics) {
             }
         }
         // "linear statics (3D): 1234 unknowns, ..." and "unknowns  : 1234 (...)".
+        // (The solver line "... AMD below 50000 unknowns, ..." is not a count.)
         let unknowns = t
             .split_once(" unknowns,")
+            .filter(|(a, _)| !a.starts_with("solver"))
             .and_then(|(a, _)| a.rsplit(' ').next())
             .or_else(|| t.strip_prefix("unknowns").and_then(|r| r.trim_start().strip_prefix(':')))
             .and_then(|r| r.split_whitespace().next())
@@ -154,6 +156,7 @@ mod tests {
     fn reads_the_message_file() {
         let mess = "  # End of command #0002 LIRE_MAILLAGE  elapsed 0.011 s\n\
             \x20 linear statics (3D): 1234 unknowns, 12 eliminated by kinematic conditions, 1222 solved\n\
+            \x20   solver    : SOLVEUR METHODE='MUMPS': sparse direct, AMD below 50000 unknowns, METIS above\n\
             \x20 # End of command #0003 MECA_STATIQUE  elapsed 0.500 s\n\
             \x20   unknowns  : 368 (192 standard, 122 Heaviside, 54 interface), 315 solved\n\
             \x20 step            INST  iters  RESI_GLOB_RELA  RESI_GLOB_MAXI\n\

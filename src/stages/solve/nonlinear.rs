@@ -54,7 +54,7 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         // Start from the previous state; the imposed values of this step come with the map.
         let x: Vec<f64> = map.free_to_full.iter().map(|&d| u[d]).collect();
         let fact = match solve::factorize(k.as_ref(), &opts) {
-            Ok((f, ..)) => f,
+            Ok(f) => f,
             Err(_) => {
                 // Let the solver report which unknowns are singular.
                 solve_reduced(a, &p, &map, &k, &rhs, &opts)?;

@@ -174,24 +174,19 @@ impl Driver<'_> {
 
     fn factor_solve(
         &self,
+        map: &DofMap,
         k: &faer::sparse::SparseColMat<usize, f64>,
         rhs: &[f64],
         t1: f64,
     ) -> std::result::Result<Vec<f64>, Failure> {
-        let (fact, ..) = solve::factorize(k.as_ref(), &self.opts).map_err(|e| {
-            let names = match &e {
-                solve::SolveError::Singular { dofs, .. } => {
-                    dofs.iter().take(6).map(|&d| d.to_string()).collect::<Vec<_>>().join(", ")
-                }
-                _ => String::new(),
-            };
-            Failure::Step(self.a.err("SOLVEUR", format!("the tangent matrix at INST={t1} is singular: {e} {names}")))
+        let p = self.p;
+        let sol = solve::solve(k.as_ref(), rhs, &self.opts).map_err(|e| {
+            let msg = crate::stages::core::solver::solve_error(e, &self.opts, &|d| {
+                p.numbering.label(map.free_to_full[d], Some(&p.mesh))
+            });
+            Failure::Step(self.a.err("SOLVEUR", format!("the tangent matrix at INST={t1}: {msg}")))
         })?;
-        let x = fact.solve(rhs);
-        if x.iter().any(|v| !v.is_finite()) {
-            return Err(Failure::Step(self.a.err("SOLVEUR", format!("the solution at INST={t1} is not finite"))));
-        }
-        Ok(x)
+        Ok(sol.x)
     }
 
     /// One step [t0, t1]: prediction, then Newton iterations.
@@ -224,7 +219,7 @@ impl Driver<'_> {
         let sc = StepFrame { pattern, elems, fext, t1, dt };
         // Prediction: tangent and internal forces of the start state.
         let pred = self.assemble(&sc, &map_pred, u, states)?;
-        let dx = self.factor_solve(&pred.k, &pred.rhs, t1)?;
+        let dx = self.factor_solve(&map_pred, &pred.k, &pred.rhs, t1)?;
         let mut unew: Vec<f64> = u.iter().zip(map_pred.expand(&dx)).map(|(a, b)| a + b).collect();
         let mut iters = 0;
         let mut history = Vec::new();
@@ -261,7 +256,7 @@ impl Driver<'_> {
                     ),
                 )));
             }
-            let dx = self.factor_solve(&now.k, &now.rhs, t1)?;
+            let dx = self.factor_solve(&map, &now.k, &now.rhs, t1)?;
             for (ui, di) in unew.iter_mut().zip(map.expand(&dx)) {
                 *ui += di;
             }

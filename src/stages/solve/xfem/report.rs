@@ -104,6 +104,7 @@ pub fn run_log(command: &str, model: &ConceptRef, su: &Setup, el: &Elements, run
         "step", "INST", "iters", "RESI_GLOB_RELA", "RESI_GLOB_MAXI"
     );
     s.push_str(&run.log);
+    s.push_str(&run.solver);
     let _ = writeln!(
         s,
         "    time      : elements {:.3} s, assembly {:.3} s, factorization and solves {:.3} s, total {:.3} s",
