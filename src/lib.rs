@@ -13,4 +13,5 @@ pub mod runner;
 pub mod solve;
 pub mod stages;
 pub mod syntax;
+pub mod text;
 pub mod xfem;

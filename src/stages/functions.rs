@@ -465,7 +465,7 @@ pub fn impr_fonction(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     if format != "TABLEAU" {
         return Err(a.err("FORMAT", format!("FORMAT='{format}' is not supported yet")));
     }
-    let fmt = |v: f64| crate::interp::format::sci(v, 10, true);
+    let fmt = |v: f64| crate::text::sci(v, 10, true);
     let mut text = String::new();
     for t in a.texts("TITRE") {
         text.push_str(&format!("#TITRE {t}\n"));

@@ -2,8 +2,8 @@
 
 use crate::concepts::table::{Cell, ColType, Column, Table};
 use crate::diag::{Error, Result};
-use crate::interp::format::{percent, to_str};
-use crate::interp::Value;
+use crate::text::float_repr;
+use crate::text::printf::format_real;
 
 /// Split on one or more occurrences of `sep`, ignoring leading/trailing ones.
 fn msplit(line: &str, sep: &str) -> Vec<String> {
@@ -84,7 +84,7 @@ pub fn columns_from_rows(names: &[String], rows: &[Vec<Cell>]) -> Vec<Column> {
                 .map(|c| match (ty, c) {
                     (ColType::R, Cell::Int(i)) => Cell::Real(i as f64),
                     (ColType::K(_), Cell::Int(i)) => Cell::Text(i.to_string()),
-                    (ColType::K(_), Cell::Real(r)) => Cell::Text(to_str(&Value::Float(r))),
+                    (ColType::K(_), Cell::Real(r)) => Cell::Text(float_repr(r)),
                     (_, c) => c,
                 })
                 .collect();
@@ -275,7 +275,7 @@ fn cell_text(c: &Cell, fmt_r: &str, format: &str) -> String {
         Cell::Empty if format == "AGRAF" => "\\-".into(),
         Cell::Empty => "-".into(),
         Cell::Int(i) => i.to_string(),
-        Cell::Real(r) => percent(&real_format(fmt_r), &Value::Float(*r)).unwrap_or_else(|_| r.to_string()),
+        Cell::Real(r) => format_real(&real_format(fmt_r), *r).unwrap_or_else(|_| r.to_string()),
         Cell::Text(t) => t.clone(),
     }
 }

@@ -7,10 +7,9 @@ use crate::catalog::args::{Args, Val};
 use crate::concepts::table::{Cell, ColType, Column, Table};
 use crate::concepts::ConceptData;
 use crate::diag::{Error, Result};
-use crate::interp::format::percent;
-use crate::interp::Value;
 use crate::stages::select::{filter_rows, filtered};
 use crate::stages::Ctx;
+use crate::text::printf::format_real;
 use io as table_io;
 
 fn cell_of(v: &Val) -> Cell {
@@ -164,7 +163,7 @@ fn format_key(c: &Cell, fmt_r: Option<&str>) -> String {
         (Cell::Real(r), Some(f)) => {
             let f = f.trim().trim_start_matches("1P");
             let conv = if f.starts_with(['F', 'f']) { "f" } else { "E" };
-            percent(&format!("%{}{conv}", &f[1..]), &Value::Float(*r)).unwrap_or_default()
+            format_real(&format!("%{}{conv}", &f[1..]), *r).unwrap_or_default()
         }
         (Cell::Real(r), None) => format!("{r:e}"),
         (Cell::Int(i), _) => i.to_string(),
