@@ -16,6 +16,10 @@ pub fn str_repr(s: &str) -> String {
             '\n' => out.push_str("\\n"),
             '\t' => out.push_str("\\t"),
             '\r' => out.push_str("\\r"),
+            // Python writes the other control characters (and the Latin-1 ones, and the soft hyphen) as \xhh.
+            c if (c as u32) < 0x20 || (0x7f..=0xa0).contains(&(c as u32)) || c == '\u{ad}' => {
+                out.push_str(&format!("\\x{:02x}", c as u32))
+            }
             c if c == quote => {
                 out.push('\\');
                 out.push(c)
@@ -121,12 +125,9 @@ pub fn percent(fmt: &str, args: &Value) -> Result<String> {
         Value::Tuple(t) => text::printf::format(fmt, t.as_ref(), None).map_err(py),
         Value::Dict(d) => {
             let lookup = |key: &str| -> std::result::Result<Value, FormatError> {
-                d.borrow()
-                    .get(&Value::str(key))
-                    .cloned()
-                    .ok_or_else(|| FormatError::new("KeyError", format!("'{key}'")))
+                d.borrow().get(&Value::str(key)).cloned().ok_or_else(|| FormatError::new("KeyError", str_repr(key)))
             };
-            text::printf::format::<Value>(fmt, &[], Some(&lookup)).map_err(py)
+            text::printf::format(fmt, std::slice::from_ref(args), Some(&lookup)).map_err(py)
         }
         v => text::printf::format(fmt, std::slice::from_ref(v), None).map_err(py),
     }

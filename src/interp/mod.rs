@@ -541,7 +541,8 @@ impl<'h> Interp<'h> {
                 FPart::Field { expr, conv, spec } => {
                     let v = self.eval(expr)?;
                     let v = match conv {
-                        Some('r') | Some('a') => Value::str(&format::repr(&v)),
+                        Some('r') => Value::str(&format::repr(&v)),
+                        Some('a') => Value::str(&crate::text::ascii(&format::repr(&v))),
                         Some('s') => Value::str(&format::to_str(&v)),
                         _ => v,
                     };

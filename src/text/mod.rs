@@ -6,13 +6,26 @@
 //! Values of a language reach the formatters through the [`Operand`] trait (what Python's `%` and
 //! `format()` need to know of a value: a number, a string, or something with a `str` and a `repr`).
 
+pub mod fortran;
 mod number;
 pub mod printf;
 pub mod spec;
 
-pub use number::{float_repr, general, nonfinite, sci};
+pub use number::{fixed, float_repr, general, nonfinite, sci};
 
 use std::fmt;
+
+/// The widest field and the longest precision a format may ask for. Python would try to allocate
+/// what `'%.2000000000f'` asks for; we stop with a `MemoryError` naming the limit instead.
+pub const MAX_WIDTH: usize = 10_000_000;
+
+/// A width or precision within [`MAX_WIDTH`], else the `MemoryError` naming it (`what`: "format width").
+pub fn check_size(what: &str, n: usize) -> Result<(), FormatError> {
+    if n > MAX_WIDTH {
+        return Err(FormatError::new("MemoryError", format!("{what} {n} exceeds the limit of {MAX_WIDTH} characters")));
+    }
+    Ok(())
+}
 
 /// A formatting failure, as the Python exception it is: `ValueError: incomplete format`.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -41,6 +54,20 @@ impl fmt::Display for FormatError {
 }
 
 impl std::error::Error for FormatError {}
+
+/// Python's `ascii()` of a `repr`: non-ASCII characters as `\xhh`, `\uhhhh` or `\Uhhhhhhhh`.
+pub fn ascii(repr: &str) -> String {
+    let mut out = String::new();
+    for ch in repr.chars() {
+        match ch as u32 {
+            0..=0x7f => out.push(ch),
+            n @ 0x80..=0xff => out.push_str(&format!("\\x{n:02x}")),
+            n @ 0x100..=0xffff => out.push_str(&format!("\\u{n:04x}")),
+            n => out.push_str(&format!("\\U{n:08x}")),
+        }
+    }
+    out
+}
 
 /// A number as Python's formatters see it.
 #[derive(Debug, Clone, Copy, PartialEq)]

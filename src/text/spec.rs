@@ -1,8 +1,8 @@
 //! The format-spec mini-language of `format()`, `str.format` and f-strings
-//! (`[[fill]align][sign][#][0][width][,|_][.precision][type]`).
+//! (`[[fill]align][sign][#][0][width][,|_][.precision][type]`), as CPython 3.11 reads it.
 
-use super::number::{float_repr, general, nonfinite, sci};
-use super::{FormatError, Number, Operand};
+use super::number::{fixed, float_repr, general, general_dot0, nonfinite, sci};
+use super::{check_size, FormatError, Number, Operand};
 
 /// A parsed format spec; `%`-directives fill the same fields.
 #[derive(Default, Debug, Clone)]
@@ -18,8 +18,20 @@ pub struct Spec {
     pub ty: Option<char>,
 }
 
+/// Decimal digits at `c[*i..]` as a count, or `None` past `limit`.
+fn digits(c: &[char], i: &mut usize, limit: usize) -> Option<usize> {
+    let mut n: usize = 0;
+    while let Some(d) = c.get(*i).and_then(|ch| ch.to_digit(10)) {
+        n = n.checked_mul(10).and_then(|n| n.checked_add(d as usize)).filter(|n| *n <= limit)?;
+        *i += 1;
+    }
+    Some(n)
+}
+
 impl Spec {
-    pub fn parse(spec: &str) -> Result<Spec, FormatError> {
+    /// Parse `spec` for a value of type `type_name` (named by the error of a malformed spec).
+    pub fn parse(spec: &str, type_name: &str) -> Result<Spec, FormatError> {
+        let too_many = || FormatError::value("Too many decimal digits in format string");
         let c: Vec<char> = spec.chars().collect();
         let mut i = 0;
         let mut s = Spec::default();
@@ -44,45 +56,43 @@ impl Spec {
             s.zero = true;
             i += 1;
         }
-        let st = i;
-        while i < c.len() && c[i].is_ascii_digit() {
-            i += 1;
-        }
-        if i > st {
-            s.width = c[st..i].iter().collect::<String>().parse().unwrap();
-        }
+        s.width = digits(&c, &mut i, isize::MAX as usize).ok_or_else(too_many)?;
         if i < c.len() && (c[i] == ',' || c[i] == '_') {
             s.grouping = Some(c[i]);
             i += 1;
+            if i < c.len() && (c[i] == ',' || c[i] == '_') {
+                return Err(FormatError::value("Cannot specify both ',' and '_'."));
+            }
         }
         if i < c.len() && c[i] == '.' {
             i += 1;
             let st = i;
-            while i < c.len() && c[i].is_ascii_digit() {
-                i += 1;
+            let p = digits(&c, &mut i, isize::MAX as usize).ok_or_else(too_many)?;
+            if i == st {
+                return Err(FormatError::value("Format specifier missing precision"));
             }
-            s.prec = Some(c[st..i].iter().collect::<String>().parse().map_err(|_| bad_spec(spec))?);
+            s.prec = Some(p);
         }
-        if i < c.len() {
-            s.ty = Some(c[i]);
-            i += 1;
+        if c.len() - i > 1 {
+            return Err(FormatError::value(format!(
+                "Invalid format specifier '{spec}' for object of type '{type_name}'"
+            )));
         }
-        if i != c.len() {
-            return Err(bad_spec(spec));
+        s.ty = c.get(i).copied();
+        check_size("format width", s.width)?;
+        if let Some(p) = s.prec {
+            check_size("format precision", p)?;
         }
         Ok(s)
     }
 }
 
-fn bad_spec(spec: &str) -> FormatError {
-    FormatError::value(format!("invalid format specifier '{spec}'"))
-}
-
-fn group(int_part: &str, sep: char) -> String {
-    let bytes: Vec<char> = int_part.chars().collect();
+/// Group the digits of `int_part` by `size` with `sep`.
+fn group(int_part: &str, sep: char, size: usize) -> String {
+    let digits: Vec<char> = int_part.chars().collect();
     let mut out = String::new();
-    for (i, ch) in bytes.iter().enumerate() {
-        if i > 0 && (bytes.len() - i).is_multiple_of(3) {
+    for (i, ch) in digits.iter().enumerate() {
+        if i > 0 && (digits.len() - i).is_multiple_of(size) {
             out.push(sep);
         }
         out.push(*ch);
@@ -90,19 +100,21 @@ fn group(int_part: &str, sep: char) -> String {
     out
 }
 
-/// Pad `sign` + `body` to the spec's width, with its fill and alignment (numbers right, text left).
+/// Pad `sign` + `body` to the spec's width, with its fill and alignment (numbers right, text left; the
+/// `0` flag fills with zeros between the sign and a number).
 pub(crate) fn pad(body: String, sign: &str, s: &Spec, numeric: bool) -> String {
     let len = body.chars().count() + sign.chars().count();
     if len >= s.width {
         return format!("{sign}{body}");
     }
     let n = s.width - len;
-    let (fill, align) = if s.zero && s.align.is_none() && numeric {
-        ('0', '=')
-    } else {
-        (s.fill.unwrap_or(' '), s.align.unwrap_or(if numeric { '>' } else { '<' }))
-    };
-    let f = |k: usize| fill.to_string().repeat(k);
+    let fill = s.fill.unwrap_or(if s.zero { '0' } else { ' ' });
+    let align = s.align.unwrap_or(match (numeric, s.zero) {
+        (true, true) => '=',
+        (true, false) => '>',
+        (false, _) => '<',
+    });
+    let f = |k: usize| std::iter::repeat_n(fill, k).collect::<String>();
     match align {
         '<' => format!("{sign}{body}{}", f(n)),
         '>' => format!("{}{sign}{body}", f(n)),
@@ -123,111 +135,148 @@ pub(crate) fn sign_str(neg: bool, sign: Option<char>) -> String {
     }
 }
 
+/// The digits of a number under grouping, zero-filled to the width when the `0` flag (and no other
+/// fill) asks for it, as CPython fills: `format(1234567, '012,')` is `'0,001,234,567'`.
+fn grouped(int_part: &str, rest: &str, sign: &str, s: &Spec, size: usize) -> String {
+    let Some(sep) = s.grouping else {
+        return format!("{int_part}{rest}");
+    };
+    let zero_fill = s.zero && s.fill.is_none() && matches!(s.align, None | Some('='));
+    let mut n = int_part.len();
+    if zero_fill {
+        let fixed_len = sign.chars().count() + rest.chars().count();
+        while fixed_len + n + (n.max(1) - 1) / size < s.width {
+            n += 1;
+        }
+    }
+    let padded: String = std::iter::repeat_n('0', n - int_part.len()).chain(int_part.chars()).collect();
+    format!("{}{rest}", group(&padded, sep, size))
+}
+
 /// `format(v, spec)`.
 pub fn format<O: Operand + ?Sized>(v: &O, spec: &str) -> Result<String, FormatError> {
-    let s = Spec::parse(spec)?;
+    let s = Spec::parse(spec, &v.type_name())?;
     match v.number() {
+        Some(Number::Bool(_)) if spec.is_empty() => Ok(v.to_str()),
         Some(n @ (Number::Int(_) | Number::Bool(_)))
             if !matches!(s.ty, Some('e' | 'E' | 'f' | 'F' | 'g' | 'G' | '%')) =>
         {
-            if s.ty.is_none() && matches!(n, Number::Bool(_)) && spec.is_empty() {
-                return Ok(v.to_str());
-            }
-            let i = n.as_int().unwrap_or(0);
-            let digits = match s.ty {
-                None | Some('d') | Some('n') => i.unsigned_abs().to_string(),
-                Some('x') => format!("{:x}", i.unsigned_abs()),
-                Some('X') => format!("{:X}", i.unsigned_abs()),
-                Some('o') => format!("{:o}", i.unsigned_abs()),
-                Some('b') => format!("{:b}", i.unsigned_abs()),
-                Some('c') => char::from_u32(i as u32).map(|c| c.to_string()).unwrap_or_default(),
-                Some(t) => {
-                    return Err(FormatError::value(format!("Unknown format code '{t}' for object of type 'int'")))
-                }
-            };
-            let digits = match s.grouping {
-                Some(g) => group(&digits, g),
-                None => digits,
-            };
-            let prefix = if s.alt {
-                match s.ty {
-                    Some('x') => "0x",
-                    Some('X') => "0X",
-                    Some('o') => "0o",
-                    Some('b') => "0b",
-                    _ => "",
-                }
-            } else {
-                ""
-            };
-            let sign = sign_str(i < 0, s.sign);
-            Ok(pad(format!("{prefix}{digits}"), &sign, &s, true))
+            format_int(n.as_int().unwrap_or(0), &s)
         }
-        Some(n) => {
-            let f = n.as_f64();
-            let neg = f.is_sign_negative();
-            let a = f.abs();
-            let body = match s.ty {
-                Some('f') | Some('F') => {
-                    if a.is_finite() {
-                        format!("{:.*}", s.prec.unwrap_or(6), a)
-                    } else {
-                        nonfinite(a, s.ty == Some('F'))
-                    }
-                }
-                Some('e') | Some('E') => {
-                    if a.is_finite() {
-                        sci(a, s.prec.unwrap_or(6), s.ty == Some('E'))
-                    } else {
-                        nonfinite(a, s.ty == Some('E'))
-                    }
-                }
-                Some('g') | Some('G') | Some('n') => general(a, s.prec.unwrap_or(6), s.ty == Some('G'), s.alt),
-                Some('%') => format!("{:.*}%", s.prec.unwrap_or(6), a * 100.0),
-                None => match s.prec {
-                    Some(p) => {
-                        let g = general(a, p, false, false);
-                        if g.contains(['.', 'e', 'n', 'i']) {
-                            g
-                        } else {
-                            format!("{g}.0")
-                        }
-                    }
-                    None => float_repr(a),
-                },
-                Some(t) => {
-                    return Err(FormatError::value(format!("Unknown format code '{t}' for object of type 'float'")))
-                }
-            };
-            let body = match s.grouping {
-                Some(g) => {
-                    let (ip, rest) = match body.find(|c: char| !c.is_ascii_digit()) {
-                        Some(p) => (&body[..p], &body[p..]),
-                        None => (&body[..], ""),
-                    };
-                    format!("{}{}", group(ip, g), rest)
-                }
-                None => body,
-            };
-            let sign = sign_str(neg && !(f.is_nan()), s.sign);
-            Ok(pad(body, &sign, &s, true))
-        }
-        None => {
-            if let Some(t) = s.ty {
-                if t != 's' {
-                    return Err(FormatError::value(format!(
-                        "Unknown format code '{t}' for object of type '{}'",
-                        v.type_name()
-                    )));
-                }
-            }
-            let mut text = v.to_str();
-            if let Some(p) = s.prec {
-                text = text.chars().take(p).collect();
-            }
-            Ok(pad(text, "", &s, false))
+        Some(n) => format_float(n.as_f64(), &s),
+        None => match v.text() {
+            Some(t) => format_text(t, &s),
+            None if spec.is_empty() => Ok(v.to_str()),
+            None => Err(FormatError::type_error(format!(
+                "unsupported format string passed to {}.__format__",
+                v.type_name()
+            ))),
+        },
+    }
+}
+
+fn format_int(i: i64, s: &Spec) -> Result<String, FormatError> {
+    let ty = s.ty.unwrap_or('d');
+    if s.prec.is_some() {
+        return Err(FormatError::value("Precision not allowed in integer format specifier"));
+    }
+    if let (Some(g), 'c' | 'n' | 'x' | 'X' | 'o' | 'b') = (s.grouping, ty) {
+        if g == ',' || matches!(ty, 'c' | 'n') {
+            return Err(FormatError::value(format!("Cannot specify '{g}' with '{ty}'.")));
         }
     }
+    if ty == 'c' {
+        if s.sign.is_some() {
+            return Err(FormatError::value("Sign not allowed with integer format specifier 'c'"));
+        }
+        if s.alt {
+            return Err(FormatError::value("Alternate form (#) not allowed with integer format specifier 'c'"));
+        }
+        return Ok(pad(char_of(i)?, "", s, true));
+    }
+    let a = i.unsigned_abs();
+    let (digits, prefix, size) = match ty {
+        'd' | 'n' => (a.to_string(), "", 3),
+        'x' => (format!("{a:x}"), "0x", 4),
+        'X' => (format!("{a:X}"), "0X", 4),
+        'o' => (format!("{a:o}"), "0o", 4),
+        'b' => (format!("{a:b}"), "0b", 4),
+        t => return Err(FormatError::value(format!("Unknown format code '{t}' for object of type 'int'"))),
+    };
+    let sign = sign_str(i < 0, s.sign) + if s.alt { prefix } else { "" };
+    Ok(pad(grouped(&digits, "", &sign, s, size), &sign, s, true))
+}
+
+/// The character of code point `i` (`%c`, `{:c}`).
+pub(crate) fn char_of(i: i64) -> Result<String, FormatError> {
+    if !(0..0x110000).contains(&i) {
+        return Err(FormatError::new("OverflowError", "%c arg not in range(0x110000)"));
+    }
+    char::from_u32(i as u32).map(String::from).ok_or_else(|| {
+        FormatError::value(format!(
+            "%c arg {i:#x} is a surrogate code point, which this interpreter's strings cannot hold"
+        ))
+    })
+}
+
+fn format_float(f: f64, s: &Spec) -> Result<String, FormatError> {
+    if let (Some(g), Some('n')) = (s.grouping, s.ty) {
+        return Err(FormatError::value(format!("Cannot specify '{g}' with 'n'.")));
+    }
+    let a = f.abs();
+    let upper = matches!(s.ty, Some('E' | 'F' | 'G'));
+    let body = match s.ty {
+        Some('f' | 'F' | 'e' | 'E' | 'g' | 'G' | 'n' | '%') | None if !a.is_finite() => nonfinite(a, upper),
+        Some('f' | 'F') => with_point(fixed(a, s.prec.unwrap_or(6)), s.alt),
+        Some('e' | 'E') => with_point(sci(a, s.prec.unwrap_or(6), upper), s.alt),
+        Some('g' | 'G' | 'n') => general(a, s.prec.unwrap_or(6), upper, s.alt),
+        Some('%') => with_point(fixed(a * 100.0, s.prec.unwrap_or(6)), s.alt),
+        None => match s.prec {
+            Some(p) => with_point(general_dot0(a, p), s.alt),
+            None => float_repr(a),
+        },
+        Some(t) => return Err(FormatError::value(format!("Unknown format code '{t}' for object of type 'float'"))),
+    };
+    let body = if s.ty == Some('%') { body + "%" } else { body };
+    let sign = sign_str(f.is_sign_negative() && !f.is_nan(), s.sign);
+    let split = body.find(|c: char| !c.is_ascii_digit()).unwrap_or(body.len());
+    let body = if a.is_finite() { grouped(&body[..split], &body[split..], &sign, s, 3) } else { body };
+    Ok(pad(body, &sign, s, true))
+}
+
+/// The `#` flag keeps the decimal point of a number written without decimals (`'%#.0f' % 15` → `15.`).
+pub(crate) fn with_point(body: String, alt: bool) -> String {
+    if !alt || body.contains('.') || !body.starts_with(|c: char| c.is_ascii_digit()) {
+        return body;
+    }
+    match body.find(['e', 'E']) {
+        Some(p) => format!("{}.{}", &body[..p], &body[p..]),
+        None => body + ".",
+    }
+}
+
+fn format_text(t: &str, s: &Spec) -> Result<String, FormatError> {
+    match s.ty {
+        None | Some('s') => {}
+        Some(ty) => return Err(FormatError::value(format!("Unknown format code '{ty}' for object of type 'str'"))),
+    }
+    if s.sign.is_some() {
+        return Err(FormatError::value("Sign not allowed in string format specifier"));
+    }
+    if s.alt {
+        return Err(FormatError::value("Alternate form (#) not allowed in string format specifier"));
+    }
+    if let Some(g) = s.grouping {
+        return Err(FormatError::value(format!("Cannot specify '{g}' with 's'.")));
+    }
+    if s.align == Some('=') {
+        return Err(FormatError::value("'=' alignment not allowed in string format specifier"));
+    }
+    let text: String = match s.prec {
+        Some(p) => t.chars().take(p).collect(),
+        None => t.to_string(),
+    };
+    Ok(pad(text, "", s, false))
 }
 
 #[cfg(test)]
