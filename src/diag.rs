@@ -21,6 +21,8 @@ pub enum ErrorKind {
     Io,
     /// A command ran and failed (bad data, numerical failure, ...).
     Runtime,
+    /// A bug of aster-rs, not of the command file: a panic the runner caught.
+    Internal,
 }
 
 #[derive(Debug, Clone)]
@@ -51,6 +53,10 @@ impl Error {
     }
     pub fn unsupported(msg: impl Into<String>) -> Self {
         Self::new(ErrorKind::Unsupported, msg)
+    }
+    /// A caught panic: `internal error: MESSAGE`.
+    pub fn internal(panic: &str) -> Self {
+        Self::new(ErrorKind::Internal, format!("internal error: {panic}"))
     }
     /// Attach a span unless a more precise one is already there.
     pub fn at(mut self, span: Span) -> Self {

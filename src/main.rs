@@ -160,10 +160,19 @@ fn main() -> ExitCode {
                 }
             };
             let opts = RunOptions { out_dir: out, units, echo: !quiet };
-            let outcome = match &case {
+            // The runner catches panics of the interpreter and the stages with their location; this
+            // catches one of the runner itself (reading units, delivering results).
+            let outcome = runner::guard::catch(|| match &case {
                 None => runner::run_default(&opts),
                 Some(c) if c.extension().map(|e| e == "export").unwrap_or(false) => runner::run_export(c, &opts),
                 Some(c) => runner::run_comm(c, &opts),
+            });
+            let outcome = match outcome {
+                Ok(o) => o,
+                Err(panic) => {
+                    eprintln!("<F> {}", aster::diag::Error::internal(&panic));
+                    return ExitCode::from(2);
+                }
             };
             if let Some(s) = summary {
                 let _ = std::fs::write(s, suite::summary_text(&outcome));

@@ -282,3 +282,39 @@ fn the_issue_format_cases_under_aster_run() {
     assert_eq!(r.code, 0, "stderr: {}", r.stderr);
     assert!(r.stdout.contains("[1  ]"), "stdout: {}", r.stdout);
 }
+
+/// The test hook ASTER_INJECT_PANIC makes the stage of a command panic: the run must stop with a
+/// located `<F> ... internal error`, print no raw panic or backtrace, exit with 2 and deliver no
+/// result file (junction_2d writes unit 80 with IMPR_RESU before its TEST_RESU).
+#[test]
+fn an_internal_panic_is_a_located_error_and_delivers_nothing() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = scratch("panic");
+    std::fs::copy(root.join("comm/junction_2d.comm"), dir.join("junction_2d.comm")).unwrap();
+    let mesh = format!("20={}", root.join("med/junction_quad8.med").display());
+    let rmed = dir.join("junction_2d.rmed");
+    let units = ["--unit", &mesh, "--unit", &format!("80={}", rmed.display())];
+
+    // Without the hook the result is delivered: the assertions below are not vacuous.
+    let r = aster_run(&dir, "junction_2d.comm", &units, &[]);
+    assert_eq!(r.code, 0, "stderr: {}", r.stderr);
+    assert!(rmed.exists());
+    std::fs::remove_file(&rmed).unwrap();
+
+    let r =
+        aster_run(&dir, "junction_2d.comm", &units, &[("ASTER_INJECT_PANIC", "TEST_RESU"), ("RUST_BACKTRACE", "1")]);
+    assert_eq!(r.code, 2, "stderr: {}", r.stderr);
+    let located = "<F> junction_2d.comm:61:1: TEST_RESU: internal error: panic injected in TEST_RESU";
+    assert!(r.stderr.contains(located), "stderr: {}", r.stderr);
+    assert!(r.mess.contains(located), "mess tail: {}", &r.mess[r.mess.len().saturating_sub(400)..]);
+    assert!(r.stdout.contains(located), "the console shows the <F> line: {}", r.stdout);
+    assert!(r.mess.contains("DIAGNOSTIC JOB : <F>_ERROR"));
+    for text in [&r.stdout, &r.stderr] {
+        assert!(!text.contains("panicked at") && !text.contains("stack backtrace"), "raw panic output:\n{text}");
+    }
+    let mut left: Vec<String> =
+        std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    left.sort();
+    // The message and result text files of the run (.mess, .resu) only: no unit 80, no temporary.
+    assert_eq!(left, ["junction_2d.comm", "junction_2d.mess", "junction_2d.resu"]);
+}

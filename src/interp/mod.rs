@@ -12,7 +12,7 @@ pub mod value;
 use crate::concepts::ConceptRef;
 use crate::diag::{Error, Result};
 use crate::syntax::ast::*;
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::collections::{HashMap, HashSet};
 use std::rc::Rc;
 pub use value::{Builtin, Dict, Scope, Value};
@@ -133,13 +133,21 @@ pub struct Interp<'h> {
     host: Option<&'h mut dyn Host>,
     frames: Vec<Frame>,
     depth: usize,
+    /// Where the statement being executed is, for whoever runs the interpreter (see [`Interp::track`]).
+    position: Option<Rc<Cell<Span>>>,
 }
 
 const MAX_DEPTH: usize = 200;
 
 impl<'h> Interp<'h> {
     pub fn new(globals: Scope, host: Option<&'h mut dyn Host>) -> Self {
-        Interp { globals, host, frames: Vec::new(), depth: 0 }
+        Interp { globals, host, frames: Vec::new(), depth: 0, position: None }
+    }
+
+    /// Keep `at` set to the span of the statement being executed, so that the runner can locate
+    /// what it was doing if the interpreter stops by a panic.
+    pub fn track(&mut self, at: Rc<Cell<Span>>) {
+        self.position = Some(at);
     }
 
     /// Execute a whole module at top level.
@@ -157,6 +165,9 @@ impl<'h> Interp<'h> {
 
     fn exec_block(&mut self, body: &[Stmt]) -> Result<Flow> {
         for s in body {
+            if let Some(p) = &self.position {
+                p.set(s.span);
+            }
             let flow = self.exec(s).map_err(|e| e.at(s.span))?;
             if !matches!(flow, Flow::Normal) {
                 return Ok(flow);

@@ -2,15 +2,17 @@
 //! check` and `aster suite` do, with Code_Aster's diagnostics.
 
 pub mod export;
+pub mod guard;
 pub mod session;
 pub mod suite;
 
 use crate::diag::{Error, ErrorKind};
 use crate::interp::Interp;
 use crate::stages::CheckRecord;
+use crate::syntax::ast::Span;
 use export::{Dir, Export};
 use session::{decode, diagnostic_for, write_atomic, Mode, Session, Timing, WorkDir};
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
@@ -36,6 +38,8 @@ pub struct Outcome {
     pub records: Vec<CheckRecord>,
     /// The located error message, if the run stopped on one.
     pub error: Option<String>,
+    /// The kind of that error (`Internal` for a caught panic).
+    pub error_kind: Option<ErrorKind>,
     pub mess: Option<PathBuf>,
     pub seconds: f64,
     pub timings: Vec<Timing>,
@@ -59,12 +63,13 @@ impl Outcome {
             _ => 2,
         }
     }
-    fn failed(name: &str, diagnostic: &str, error: String) -> Outcome {
+    fn failed(name: &str, kind: ErrorKind, error: String) -> Outcome {
         Outcome {
             name: name.into(),
-            diagnostic: diagnostic.into(),
+            diagnostic: diagnostic_for(kind).into(),
             records: Vec::new(),
             error: Some(error),
+            error_kind: Some(kind),
             mess: None,
             seconds: 0.0,
             timings: Vec::new(),
@@ -81,16 +86,16 @@ pub fn run_export(path: &Path, opts: &RunOptions) -> Outcome {
     let name = stem(path);
     let ex = match Export::read(path) {
         Ok(e) => e,
-        Err(e) => return Outcome::failed(&name, "<F>_ERROR", e.msg),
+        Err(e) => return Outcome::failed(&name, e.kind, e.msg),
     };
     let comms = ex.comm_files();
     let comm = match comms.as_slice() {
         [one] => one.path.clone(),
-        [] => return Outcome::failed(&name, "<F>_ERROR", format!("{}: no 'F comm FILE D 1' line", path.display())),
+        [] => return Outcome::failed(&name, ErrorKind::Io, format!("{}: no 'F comm FILE D 1' line", path.display())),
         _ => {
             return Outcome::failed(
                 &name,
-                "<F>_ERROR",
+                ErrorKind::Unsupported,
                 format!("{}: several command files (POURSUITE) are not supported yet", path.display()),
             )
         }
@@ -117,7 +122,7 @@ fn run_file(
 ) -> Outcome {
     let bytes = match std::fs::read(comm) {
         Ok(b) => b,
-        Err(e) => return Outcome::failed(name, "<F>_ERROR", format!("{}: {e}", comm.display())),
+        Err(e) => return Outcome::failed(name, ErrorKind::Io, format!("{}: {e}", comm.display())),
     };
     let file = comm.file_name().and_then(|f| f.to_str()).unwrap_or("?").to_string();
     run_text(&file, &decode(&bytes), name, units, mess_path, validation, opts)
@@ -138,7 +143,7 @@ pub fn run_default(opts: &RunOptions) -> Outcome {
     let dir = std::env::temp_dir().join(format!("aster-rs-default-{}", std::process::id()));
     let mesh = dir.join(DEFAULT_MESH.0);
     if let Err(e) = std::fs::create_dir_all(&dir).and_then(|_| std::fs::write(&mesh, DEFAULT_MESH.1)) {
-        return Outcome::failed(name, "<F>_ERROR", format!("cannot write the default mesh {}: {e}", mesh.display()));
+        return Outcome::failed(name, ErrorKind::Io, format!("cannot write the default mesh {}: {e}", mesh.display()));
     }
     let mut units = opts.units.clone();
     if !units.iter().any(|(u, ..)| *u == 20) {
@@ -169,12 +174,12 @@ fn run_text(
     // Input units must exist before anything runs.
     for (u, p, d) in &units {
         if *d != Dir::Out && !p.exists() {
-            return Outcome::failed(name, "<F>_ERROR", format!("unit {u}: data file {} does not exist", p.display()));
+            return Outcome::failed(name, ErrorKind::Io, format!("unit {u}: data file {} does not exist", p.display()));
         }
     }
     let work = match WorkDir::new() {
         Ok(w) => w,
-        Err(e) => return Outcome::failed(name, "<F>_ERROR", e.msg),
+        Err(e) => return Outcome::failed(name, e.kind, e.msg),
     };
     let file = file.to_string();
     let src = src.to_string();
@@ -184,16 +189,21 @@ fn run_text(
     session.echo = opts.echo;
     session.validation = validation;
 
-    let result = crate::syntax::parse_module(&src)
-        .map_err(|e| {
-            let mut err = Error::new(ErrorKind::Syntax, e.message);
-            err.span = Some(crate::syntax::ast::Span { start: e.offset, end: e.offset });
-            err
-        })
-        .and_then(|module| {
-            let mut it = Interp::new(globals.clone(), Some(&mut session));
-            it.run(&module)
-        });
+    let at = Rc::new(Cell::new(Span::default()));
+    let result = guard::catch(|| {
+        crate::syntax::parse_module(&src)
+            .map_err(|e| {
+                let mut err = Error::new(ErrorKind::Syntax, e.message);
+                err.span = Some(Span { start: e.offset, end: e.offset });
+                err
+            })
+            .and_then(|module| {
+                let mut it = Interp::new(globals.clone(), Some(&mut session));
+                it.track(at.clone());
+                it.run(&module)
+            })
+    })
+    .unwrap_or_else(|panic| Err(Error::internal(&panic).at(at.get())));
     let (diagnostic, error) = match &result {
         Err(e) => {
             let located = e.located(&file, &src);
@@ -247,6 +257,7 @@ fn run_text(
         diagnostic,
         records: session.records.clone(),
         error,
+        error_kind: result.err().map(|e| e.kind),
         mess: written,
         seconds: t0.elapsed().as_secs_f64(),
         timings: session.timings.clone(),
@@ -259,17 +270,22 @@ pub fn check_file(path: &Path) -> Result<usize, (String, ErrorKind)> {
     let bytes = std::fs::read(path).map_err(|e| (format!("{}: {e}", path.display()), ErrorKind::Io))?;
     let src = decode(&bytes);
     let file = path.file_name().and_then(|f| f.to_str()).unwrap_or("?").to_string();
-    let module = crate::syntax::parse_module(&src).map_err(|e| {
-        let (l, c) = crate::syntax::lexer::line_col(&src, e.offset);
-        (format!("{file}:{l}:{c}: {}", e.message), ErrorKind::Syntax)
-    })?;
+    let module = guard::catch(|| crate::syntax::parse_module(&src))
+        .map_err(|panic| (Error::internal(&panic).located(&file, &src), ErrorKind::Internal))?
+        .map_err(|e| {
+            let (l, c) = crate::syntax::lexer::line_col(&src, e.offset);
+            (format!("{file}:{l}:{c}: {}", e.message), ErrorKind::Syntax)
+        })?;
     let globals = Rc::new(RefCell::new(HashMap::new()));
     let work = std::env::temp_dir();
     let mut session = Session::new(Mode::Check, &file, &src, globals.clone(), work);
-    let r = {
+    let at = Rc::new(Cell::new(Span::default()));
+    let r = guard::catch(|| {
         let mut it = Interp::new(globals, Some(&mut session));
+        it.track(at.clone());
         it.run(&module)
-    };
+    })
+    .unwrap_or_else(|panic| Err(Error::internal(&panic).at(at.get())));
     match r {
         Ok(()) => Ok(session.ncommands()),
         Err(e) => Err((e.located(&file, &src), e.kind)),
