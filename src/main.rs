@@ -224,7 +224,7 @@ fn main() -> ExitCode {
             if let Err(e) = std::fs::write(&jpath, suite::junit(&results)) {
                 eprintln!("aster: {}: {e}", jpath.display());
             }
-            if results.iter().all(|r| r.diagnostic == "OK") {
+            if results.iter().all(|r| r.diagnostic == runner::Diagnostic::Ok) {
                 ExitCode::SUCCESS
             } else {
                 ExitCode::from(1)

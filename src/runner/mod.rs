@@ -1,6 +1,7 @@
 //! Running cases: a command file with its units, as `aster run`, `aster
 //! check` and `aster suite` do, with Code_Aster's diagnostics.
 
+pub mod diagnostic;
 pub mod export;
 pub mod guard;
 pub mod session;
@@ -10,8 +11,9 @@ use crate::diag::{Error, ErrorKind};
 use crate::interp::Interp;
 use crate::stages::CheckRecord;
 use crate::syntax::ast::Span;
+pub use diagnostic::Diagnostic;
 use export::{Dir, Export};
-use session::{decode, diagnostic_for, write_atomic, Mode, Session, Timing, WorkDir};
+use session::{decode, write_atomic, Mode, Session, Timing, WorkDir};
 use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -33,8 +35,7 @@ pub struct RunOptions {
 #[derive(Debug, Clone)]
 pub struct Outcome {
     pub name: String,
-    /// OK, NOOK_TEST_RESU, NO_TEST_RESU, <F>_ERROR, <F>_SYNTAX_ERROR.
-    pub diagnostic: String,
+    pub diagnostic: Diagnostic,
     pub records: Vec<CheckRecord>,
     /// The located error message, if the run stopped on one.
     pub error: Option<String>,
@@ -57,16 +58,12 @@ impl Outcome {
     }
     /// The process exit code: 0 for OK (and for a run without checks).
     pub fn exit_code(&self) -> i32 {
-        match self.diagnostic.as_str() {
-            "OK" | "NO_TEST_RESU" => 0,
-            "NOOK_TEST_RESU" => 1,
-            _ => 2,
-        }
+        self.diagnostic.exit_code()
     }
     fn failed(name: &str, kind: ErrorKind, error: String) -> Outcome {
         Outcome {
             name: name.into(),
-            diagnostic: diagnostic_for(kind).into(),
+            diagnostic: Diagnostic::of_error(kind),
             records: Vec::new(),
             error: Some(error),
             error_kind: Some(kind),
@@ -211,17 +208,17 @@ fn run_text(
             if opts.echo {
                 println!("\n <F> {located}");
             }
-            (diagnostic_for(e.kind).to_string(), Some(located))
+            (Diagnostic::of_error(e.kind), Some(located))
         }
         Ok(()) => {
             let d = if session.records.iter().any(|r| r.ok == Some(false)) {
-                "NOOK_TEST_RESU"
+                Diagnostic::NookTestResu
             } else if session.records.iter().any(|r| r.ok == Some(true)) {
-                "OK"
+                Diagnostic::Ok
             } else {
-                "NO_TEST_RESU"
+                Diagnostic::NoTestResu
             };
-            (d.to_string(), None)
+            (d, None)
         }
     };
     // Results are delivered only from runs that did not stop on an error.

@@ -7,7 +7,7 @@ use crate::catalog::args::take_undeclared_lookups;
 use crate::catalog::schema::Produces;
 use crate::catalog::{catalogue, validate};
 use crate::concepts::{Concept, ConceptData};
-use crate::diag::{Error, ErrorKind, Result};
+use crate::diag::{Error, Result};
 use crate::interp::{Host, KwArg, Scope, Value};
 use crate::stages::{self, CheckRecord, Ctx, StageIo};
 use crate::syntax::ast::Span;
@@ -357,14 +357,6 @@ pub fn write_atomic(path: &Path, data: &[u8]) -> Result<()> {
         let _ = std::fs::remove_file(&tmp);
         Error::io(format!("cannot write {}: {e}", path.display()))
     })
-}
-
-/// Errors worth naming the diagnostic after.
-pub fn diagnostic_for(kind: ErrorKind) -> &'static str {
-    match kind {
-        ErrorKind::Syntax | ErrorKind::Catalog => "<F>_SYNTAX_ERROR",
-        _ => "<F>_ERROR",
-    }
 }
 
 impl Session {

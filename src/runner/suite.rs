@@ -3,7 +3,7 @@
 //! row per case and a JUnit XML file.
 
 use super::export::Export;
-use super::Outcome;
+use super::{Diagnostic, Outcome};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::{Arc, Mutex};
@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 #[derive(Debug, Clone)]
 pub struct CaseResult {
     pub name: String,
-    pub diagnostic: String,
+    pub diagnostic: Diagnostic,
     pub ok: usize,
     pub nook: usize,
     pub skip: usize,
@@ -49,7 +49,7 @@ fn parse_summary(name: &str, text: &str) -> CaseResult {
     let get = |k: &str| text.lines().find_map(|l| l.strip_prefix(&format!("{k}="))).map(str::to_string);
     CaseResult {
         name: name.to_string(),
-        diagnostic: get("diagnostic").unwrap_or_else(|| "<F>_ERROR".into()),
+        diagnostic: get("diagnostic").and_then(|d| d.parse().ok()).unwrap_or(Diagnostic::Error),
         ok: get("ok").and_then(|v| v.parse().ok()).unwrap_or(0),
         nook: get("nook").and_then(|v| v.parse().ok()).unwrap_or(0),
         skip: get("skip").and_then(|v| v.parse().ok()).unwrap_or(0),
@@ -60,7 +60,7 @@ fn parse_summary(name: &str, text: &str) -> CaseResult {
 
 impl CaseResult {
     fn error(name: String, seconds: f64, msg: String) -> CaseResult {
-        CaseResult { name, diagnostic: "<F>_ERROR".into(), ok: 0, nook: 0, skip: 0, seconds, error: Some(msg) }
+        CaseResult { name, diagnostic: Diagnostic::Error, ok: 0, nook: 0, skip: 0, seconds, error: Some(msg) }
     }
 }
 
@@ -154,7 +154,7 @@ pub fn table(results: &[CaseResult]) -> String {
             s.push_str(&format!("             {e}\n"));
         }
     }
-    let ok = results.iter().filter(|r| r.diagnostic == "OK").count();
+    let ok = results.iter().filter(|r| r.diagnostic == Diagnostic::Ok).count();
     s.push_str(&format!("{} cases: {ok} OK, {} not OK\n", results.len(), results.len() - ok));
     s
 }
@@ -165,8 +165,8 @@ fn xml_escape(s: &str) -> String {
 
 /// A JUnit XML report: a failure for NOOK, an error for <F> diagnostics.
 pub fn junit(results: &[CaseResult]) -> String {
-    let failures = results.iter().filter(|r| r.diagnostic == "NOOK_TEST_RESU").count();
-    let errors = results.iter().filter(|r| r.diagnostic.starts_with("<F>")).count();
+    let failures = results.iter().filter(|r| r.diagnostic == Diagnostic::NookTestResu).count();
+    let errors = results.iter().filter(|r| r.diagnostic.is_error()).count();
     let total: f64 = results.iter().map(|r| r.seconds).sum();
     let mut s = format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"aster-suite\" tests=\"{}\" failures=\"{failures}\" errors=\"{errors}\" time=\"{total:.3}\">\n",
@@ -179,10 +179,14 @@ pub fn junit(results: &[CaseResult]) -> String {
             r.seconds
         ));
         let msg = xml_escape(r.error.as_deref().unwrap_or(""));
-        match r.diagnostic.as_str() {
-            "OK" | "NO_TEST_RESU" => {}
-            "NOOK_TEST_RESU" => s.push_str(&format!("<failure message=\"NOOK_TEST_RESU: {} NOOK\"/>", r.nook)),
-            d => s.push_str(&format!("<error message=\"{}\">{msg}</error>", xml_escape(d))),
+        match r.diagnostic {
+            Diagnostic::Ok | Diagnostic::NoTestResu => {}
+            Diagnostic::NookTestResu => {
+                s.push_str(&format!("<failure message=\"{}: {} NOOK\"/>", Diagnostic::NookTestResu, r.nook))
+            }
+            d @ (Diagnostic::Error | Diagnostic::SyntaxError) => {
+                s.push_str(&format!("<error message=\"{}\">{msg}</error>", xml_escape(d.name())))
+            }
         }
         s.push_str("</testcase>\n");
     }
