@@ -318,3 +318,35 @@ fn an_internal_panic_is_a_located_error_and_delivers_nothing() {
     // The message and result text files of the run (.mess, .resu) only: no unit 80, no temporary.
     assert_eq!(left, ["junction_2d.comm", "junction_2d.mess", "junction_2d.resu"]);
 }
+
+/// `while True: pass` stops at `--time-limit` with a located error, and at the .export's
+/// `P time_limit` without it. The wall-time bounds are generous: functional, not a benchmark.
+#[test]
+fn a_runaway_file_stops_at_its_time_limit() {
+    let dir = scratch("time");
+    std::fs::write(dir.join("loop.comm"), "DEBUT()\nn = 0\nwhile True:\n    pass\nFIN()\n").unwrap();
+    let t0 = std::time::Instant::now();
+    let r = aster_run(&dir, "loop.comm", &["-q", "--time-limit", "2"], &[]);
+    let wall = t0.elapsed().as_secs_f64();
+    assert_eq!(r.code, 2, "stderr: {}", r.stderr);
+    assert!(r.stderr.contains("<F> loop.comm:3:1: time limit of 2 s exceeded"), "stderr: {}", r.stderr);
+    assert!(r.mess.contains("DIAGNOSTIC JOB : <F>_ERROR"));
+    assert!((1.9..3.0).contains(&wall), "stopped after {wall:.2} s");
+
+    std::fs::write(dir.join("loop.export"), "P time_limit 1\nF comm loop.comm D 1\n").unwrap();
+    let t0 = std::time::Instant::now();
+    let r = aster_run(&dir, "loop.export", &["-q"], &[]);
+    let wall = t0.elapsed().as_secs_f64();
+    assert_eq!(r.code, 2, "stderr: {}", r.stderr);
+    assert!(r.stderr.contains("<F> loop.comm:3:1: time limit of 1 s exceeded"), "stderr: {}", r.stderr);
+    assert!(wall < 2.5, "stopped after {wall:.2} s");
+
+    // A recursion inside a list comprehension, between commands: stopped where it is.
+    std::fs::write(
+        dir.join("fib.comm"),
+        "DEBUT()\ndef f(n):\n    return n if n < 2 else f(n - 1) + f(n - 2)\nx = [f(30) for i in range(100)]\nFIN()\n",
+    )
+    .unwrap();
+    let r = aster_run(&dir, "fib.comm", &["-q", "--time-limit", "0.5"], &[]);
+    assert!(r.stderr.contains("<F> fib.comm:3:5: time limit of 0.5 s exceeded"), "stderr: {}", r.stderr);
+}

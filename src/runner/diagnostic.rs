@@ -35,9 +35,12 @@ impl Diagnostic {
     pub fn of_error(kind: ErrorKind) -> Diagnostic {
         match kind {
             ErrorKind::Syntax | ErrorKind::Catalog => Diagnostic::SyntaxError,
-            ErrorKind::Python | ErrorKind::Unsupported | ErrorKind::Io | ErrorKind::Runtime | ErrorKind::Internal => {
-                Diagnostic::Error
-            }
+            ErrorKind::Python
+            | ErrorKind::Unsupported
+            | ErrorKind::Io
+            | ErrorKind::Runtime
+            | ErrorKind::Internal
+            | ErrorKind::TimeLimit => Diagnostic::Error,
         }
     }
 

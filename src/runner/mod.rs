@@ -7,7 +7,7 @@ pub mod guard;
 pub mod session;
 pub mod suite;
 
-use crate::diag::{Error, ErrorKind};
+use crate::diag::{with_deadline, Deadline, Error, ErrorKind};
 use crate::interp::Interp;
 use crate::stages::CheckRecord;
 use crate::syntax::ast::Span;
@@ -18,7 +18,7 @@ use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// Options of `aster run`.
 #[derive(Debug, Clone, Default)]
@@ -78,7 +78,40 @@ fn stem(p: &Path) -> String {
     p.file_stem().and_then(|s| s.to_str()).unwrap_or("case").to_string()
 }
 
-/// Run the case described by an .export file.
+/// What `aster run` runs.
+#[derive(Debug, Clone, Copy)]
+pub enum Case<'a> {
+    /// The embedded demo scene ([`run_default`]).
+    Demo,
+    /// A case described by an .export file ([`run_export`]).
+    Export(&'a Path),
+    /// A command file with the units of [`RunOptions`] ([`run_comm`]).
+    Comm(&'a Path),
+}
+
+/// Run a case within a time limit: `time_limit`, else the .export's `P time_limit`, else none. Past
+/// it, the run stops with a located `<F> ... time limit of N s exceeded`.
+pub fn run(case: Case<'_>, opts: &RunOptions, time_limit: Option<Duration>) -> Outcome {
+    let start = Instant::now();
+    let within =
+        |limit: Option<Duration>, f: &dyn Fn() -> Outcome| with_deadline(limit.map(|l| Deadline::since(start, l)), f);
+    match case {
+        Case::Demo => within(time_limit, &|| run_default(opts)),
+        Case::Comm(p) => within(time_limit, &|| run_comm(p, opts)),
+        Case::Export(p) => {
+            let limit = match time_limit {
+                Some(l) => Some(l),
+                None => match Export::read(p).and_then(|e| e.time_limit()) {
+                    Ok(l) => l,
+                    Err(e) => return Outcome::failed(&stem(p), e.kind, e.msg),
+                },
+            };
+            within(limit, &|| run_export(p, opts))
+        }
+    }
+}
+
+/// Run the case described by an .export file (with no time limit: see [`run`]).
 pub fn run_export(path: &Path, opts: &RunOptions) -> Outcome {
     let name = stem(path);
     let ex = match Export::read(path) {

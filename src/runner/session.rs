@@ -208,6 +208,8 @@ impl Host for Session {
                 shown.lines().map(|l| format!("  {l}")).collect::<Vec<_>>().join("\n")
             ));
         }
+        // The run's time limit is checked between commands (and by the interpreter and long stages).
+        crate::diag::check_deadline().map_err(|e| e.at(span).in_command(name))?;
         let t0 = Instant::now();
         // A panic of the catalogue or of the stage (a bug of ours) stops the run as a located error.
         let r = super::guard::catch(|| self.run_command(name, kwargs, span, target))
