@@ -350,3 +350,27 @@ fn a_runaway_file_stops_at_its_time_limit() {
     let r = aster_run(&dir, "fib.comm", &["-q", "--time-limit", "0.5"], &[]);
     assert!(r.stderr.contains("<F> fib.comm:3:5: time limit of 0.5 s exceeded"), "stderr: {}", r.stderr);
 }
+
+/// DEFI_LIST_REEL with NOMBRE=2**62 ran for ever (found by tests/fuzz_pipeline.rs); lists too long to
+/// hold and bounds that are not finite are refused by name.
+#[test]
+fn list_sizes_and_bounds_are_checked() {
+    let dir = scratch("lists");
+    let lists = [
+        // NOMBRE=2**62 ran for ever, pushing values.
+        (
+            "INTERVALLE=_F(JUSQU_A=1.0, NOMBRE=2**62)",
+            "l.comm:2:31: DEFI_LIST_REEL: INTERVALLE/NOMBRE: NOMBRE=4611686018427387904 makes a list of more than 10000000 values",
+        ),
+        ("INTERVALLE=_F(JUSQU_A=1.0, PAS=1e-308)", "DEFI_LIST_REEL: INTERVALLE/PAS: PAS=1e-308 makes a list of more"),
+        ("INTERVALLE=_F(JUSQU_A=float('inf'), PAS=0.5)", "DEFI_LIST_REEL: INTERVALLE/JUSQU_A: JUSQU_A=inf is not a finite"),
+        ("INTERVALLE=_F(JUSQU_A=float('nan'), NOMBRE=2)", "DEFI_LIST_REEL: INTERVALLE/JUSQU_A: JUSQU_A=nan is not a finite"),
+    ];
+    for (interval, want) in lists {
+        std::fs::write(dir.join("l.comm"), format!("DEBUT()\nL = DEFI_LIST_REEL(DEBUT=0.0, {interval})\nFIN()\n"))
+            .unwrap();
+        let r = aster_run(&dir, "l.comm", &["-q", "--time-limit", "20"], &[]);
+        assert_eq!(r.code, 2, "{interval}: {}", r.stderr);
+        assert!(r.stderr.contains(want), "{interval}: expected '{want}' in\n{}", r.stderr);
+    }
+}
