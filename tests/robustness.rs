@@ -374,3 +374,22 @@ fn list_sizes_and_bounds_are_checked() {
         assert!(r.stderr.contains(want), "{interval}: expected '{want}' in\n{}", r.stderr);
     }
 }
+
+/// A nan or an infinity in the material or the loads is named, not called a singular system.
+#[test]
+fn non_finite_data_is_named() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let dir = scratch("non-finite");
+    let src = std::fs::read_to_string(root.join("comm/block_tension_2d.comm")).unwrap();
+    let mesh = format!("20={}", root.join("med/block_quad8.med").display());
+    for (from, to, want) in [
+        ("E = 210000.0", "E = float('nan')", "MECA_STATIQUE: CHAM_MATER: the stiffness is not finite"),
+        ("NU = 0.3", "NU = 0.5", "MECA_STATIQUE: CHAM_MATER: the stiffness is not finite"),
+        ("P = 100.0", "P = float('inf')", "MECA_STATIQUE: EXCIT: the loads are not finite"),
+    ] {
+        std::fs::write(dir.join("b.comm"), src.replace(from, to)).unwrap();
+        let r = aster_run(&dir, "b.comm", &["-q", "--unit", &mesh], &[]);
+        assert_eq!(r.code, 2, "{to}: {}", r.stderr);
+        assert!(r.stderr.contains("b.comm:23:") && r.stderr.contains(want), "{to}: {}", r.stderr);
+    }
+}
