@@ -15,4 +15,5 @@ pub mod solve;
 pub mod stages;
 pub mod study;
 pub mod syntax;
+pub mod text;
 pub mod xfem;

@@ -32,6 +32,10 @@ enum Cmd {
         /// Write a machine-readable summary (used by `aster suite`).
         #[arg(long, hide = true)]
         summary: Option<PathBuf>,
+        /// Stop the run with a located error past this many seconds (default: the .export's
+        /// `P time_limit`, else no limit).
+        #[arg(long, value_name = "SECONDS", value_parser = runner::export::parse_seconds)]
+        time_limit: Option<std::time::Duration>,
     },
     /// Parse and validate command files against the catalogue; compute nothing.
     Check {
@@ -295,7 +299,7 @@ fn parse_unit(s: &str) -> Result<(i64, PathBuf, Dir), String> {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.cmd {
-        Cmd::Run { case, units, out, quiet, summary } => {
+        Cmd::Run { case, units, out, quiet, summary, time_limit } => {
             let units = match units.iter().map(|u| parse_unit(u)).collect::<Result<Vec<_>, _>>() {
                 Ok(u) => u,
                 Err(e) => {
@@ -304,10 +308,20 @@ fn main() -> ExitCode {
                 }
             };
             let opts = RunOptions { out_dir: out, units, echo: !quiet };
-            let outcome = match &case {
-                None => runner::run_default(&opts),
-                Some(c) if c.extension().map(|e| e == "export").unwrap_or(false) => runner::run_export(c, &opts),
-                Some(c) => runner::run_comm(c, &opts),
+            // The runner catches panics of the interpreter and the stages with their location; this
+            // catches one of the runner itself (reading units, delivering results).
+            let case = match &case {
+                None => runner::Case::Demo,
+                Some(c) if c.extension().map(|e| e == "export").unwrap_or(false) => runner::Case::Export(c),
+                Some(c) => runner::Case::Comm(c),
+            };
+            let outcome = runner::guard::catch(|| runner::run(case, &opts, time_limit));
+            let outcome = match outcome {
+                Ok(o) => o,
+                Err(panic) => {
+                    eprintln!("<F> {}", aster::diag::Error::internal(&panic));
+                    return ExitCode::from(2);
+                }
             };
             if let Some(s) = summary {
                 let _ = std::fs::write(s, suite::summary_text(&outcome));
@@ -359,7 +373,7 @@ fn main() -> ExitCode {
             if let Err(e) = std::fs::write(&jpath, suite::junit(&results)) {
                 eprintln!("aster: {}: {e}", jpath.display());
             }
-            if results.iter().all(|r| r.diagnostic == "OK") {
+            if results.iter().all(|r| r.diagnostic == runner::Diagnostic::Ok) {
                 ExitCode::SUCCESS
             } else {
                 ExitCode::from(1)

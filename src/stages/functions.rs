@@ -9,6 +9,7 @@ use crate::diag::{Error, Result};
 use crate::interp::{Formula, Value};
 use crate::stages::select::filtered;
 use crate::stages::Ctx;
+use crate::text::float_repr;
 
 // ------------------------------------------------------------------ helpers
 
@@ -163,24 +164,44 @@ pub fn defi_nappe(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     Ok(Some(ConceptData::Nappe(n)))
 }
 
+/// The most values DEFI_LIST_REEL and DEFI_LIST_ENTI make (80 MB of reals): more is a mistake in
+/// NOMBRE or PAS, which would otherwise exhaust the memory or the time of the run.
+const MAX_LIST: usize = 10_000_000;
+
 fn list_from_intervals(a: &Args, start: f64, int: bool) -> Result<Vec<f64>> {
+    if !start.is_finite() {
+        return Err(a.err("DEBUT", format!("DEBUT={} is not a finite number", float_repr(start))));
+    }
     let mut out = vec![start];
     let mut cur = start;
     for occ in a.facts("INTERVALLE") {
         let end = occ.req_real("JUSQU_A")?;
+        if !end.is_finite() {
+            return Err(occ.err("JUSQU_A", format!("JUSQU_A={} is not a finite number", float_repr(end))));
+        }
         if end <= cur {
             return Err(occ.err("JUSQU_A", format!("the interval must end after its start ({end} <= {cur})")));
         }
+        let room = MAX_LIST - out.len();
         let n = match (occ.int("NOMBRE"), occ.real("PAS")) {
+            (Some(n), _) if n as u64 > room as u64 => {
+                return Err(occ.err("NOMBRE", format!("NOMBRE={n} makes a list of more than {MAX_LIST} values")))
+            }
             (Some(n), _) => n,
-            (None, Some(p)) if p > 0.0 => {
+            (None, Some(p)) if p > 0.0 && p.is_finite() => {
                 let n = ((end - cur) / p).round();
+                if n > room as f64 {
+                    return Err(occ.err(
+                        "PAS",
+                        format!("PAS={} makes a list of more than {MAX_LIST} values in [{cur}, {end}]", float_repr(p)),
+                    ));
+                }
                 if ((cur + n * p) - end).abs() > 1e-6 * p.abs().max(1e-300) {
                     return Err(occ.err("PAS", format!("the step {p} does not divide the interval [{cur}, {end}]")));
                 }
                 n as i64
             }
-            _ => return Err(occ.err("PAS", "the step must be positive")),
+            _ => return Err(occ.err("PAS", "the step must be a positive finite number")),
         };
         let step = (end - cur) / n as f64;
         for k in 1..n {
@@ -465,7 +486,7 @@ pub fn impr_fonction(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     if format != "TABLEAU" {
         return Err(a.err("FORMAT", format!("FORMAT='{format}' is not supported yet")));
     }
-    let fmt = |v: f64| crate::interp::format::sci(v, 10, true);
+    let fmt = |v: f64| crate::text::sci(v, 10, true);
     let mut text = String::new();
     for t in a.texts("TITRE") {
         text.push_str(&format!("#TITRE {t}\n"));

@@ -213,7 +213,8 @@ pub struct Converged {
 
 /// The Newton loop of one instant at time `t`: corrections until `conv` holds, or exactly one when
 /// `linear` (MECA_STATIQUE: one solve, no convergence test). A solve that does not converge in
-/// ITER_GLOB_MAXI corrections stops with a message located at CONVERGENCE.
+/// ITER_GLOB_MAXI corrections stops with a message located at CONVERGENCE; one past the run's time
+/// limit stops before its next correction.
 pub fn newton(a: &Args, conv: &Convergence, linear: bool, t: f64, step: &mut impl NewtonStep) -> Result<Converged> {
     let mut iters = 0;
     loop {
@@ -232,6 +233,10 @@ pub fn newton(a: &Args, conv: &Convergence, linear: bool, t: f64, step: &mut imp
                 ),
             ));
         }
+        crate::diag::check_deadline().map_err(|mut e| {
+            e.msg = format!("{} during Newton iteration {} at INST={t}", e.msg, iters + 1);
+            e
+        })?;
         step.correct()?;
         iters += 1;
     }
@@ -275,6 +280,18 @@ mod tests {
         let conv = Convergence { iter_max: 2, ..Convergence::default() };
         let e = newton(&args(), &conv, false, 3.0, &mut s).unwrap_err();
         assert!(e.msg.contains("did not converge at INST=3 in 2 iterations"), "{}", e.msg);
+    }
+
+    #[test]
+    fn newton_stops_at_the_runs_deadline() {
+        let mut s = Sqrt2 { x: 1.0 };
+        let deadline = crate::diag::Deadline::after(std::time::Duration::ZERO);
+        let e =
+            crate::diag::with_deadline(Some(deadline), || newton(&args(), &Convergence::default(), false, 2.0, &mut s))
+                .unwrap_err();
+        assert_eq!(e.kind, crate::diag::ErrorKind::TimeLimit);
+        assert_eq!(e.msg, "time limit of 0 s exceeded during Newton iteration 1 at INST=2");
+        assert_eq!(s.x, 1.0, "no correction past the deadline");
     }
 
     #[test]

@@ -145,6 +145,35 @@ pub fn solve_reduced(
     rhs: &[f64],
     opts: &SolverOptions,
 ) -> Result<solve::Solution> {
+    // A nan or an infinity in the data (E, NU, a load, a coordinate) reaches the system as such: name
+    // it, rather than let the factorisation call the system singular.
+    let name = |dofs: &[usize]| -> String {
+        let names: Vec<String> =
+            dofs.iter().take(6).map(|&d| p.numbering.label(map.free_to_full[d], Some(&p.mesh))).collect();
+        names.join(", ")
+    };
+    let (col_ptr, values) = (k.col_ptr(), k.val());
+    let bad_k: Vec<usize> =
+        (0..k.ncols()).filter(|&j| values[col_ptr[j]..col_ptr[j + 1]].iter().any(|v| !v.is_finite())).collect();
+    if !bad_k.is_empty() {
+        return Err(a.err(
+            "CHAM_MATER",
+            format!(
+                "the stiffness is not finite (nan or infinite) at unknowns {}: check the material (E, NU) and the mesh",
+                name(&bad_k)
+            ),
+        ));
+    }
+    let bad_f: Vec<usize> = (0..rhs.len()).filter(|&d| !rhs[d].is_finite()).collect();
+    if !bad_f.is_empty() {
+        return Err(a.err(
+            "EXCIT",
+            format!(
+                "the loads are not finite (nan or infinite) at unknowns {}: check the values of the loads",
+                name(&bad_f)
+            ),
+        ));
+    }
     solve::solve(k.as_ref(), rhs, opts).map_err(|e| {
         let singular = matches!(e, solve::SolveError::Singular { .. });
         let msg = solve_error(e, opts, &|d| p.numbering.label(map.free_to_full[d], Some(&p.mesh)));

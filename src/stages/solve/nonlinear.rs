@@ -65,7 +65,7 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let Converged { iters, rel: residual, .. } = newton(a, &conv, false, t, &mut step)?;
         let x = step.x;
         u = map.expand(&x);
-        let (ts, rs) = (crate::interp::format::sci(t, 6, false), crate::interp::format::sci(residual, 3, false));
+        let (ts, rs) = (crate::text::sci(t, 6, false), crate::text::sci(residual, 3, false));
         log.push_str(&format!("  {n:>4}  {ts:>14}  {iters:>5}  {rs:>14}\n"));
         steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(&p, &u, true)? });
     }

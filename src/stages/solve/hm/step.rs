@@ -235,13 +235,13 @@ impl Driver<'_> {
                 log.steps += 1;
                 log.iterations += iters;
                 // Every iteration's relative residual, the prediction's first (Code_Aster's iteration 0).
-                let hist: Vec<String> = history.iter().map(|r| crate::interp::format::sci(*r, 3, false)).collect();
+                let hist: Vec<String> = history.iter().map(|r| crate::text::sci(*r, 3, false)).collect();
                 log.table.push_str(&format!(
                     "  INST {:>14}  Δt {:>11}  iterations {:>2}  RESI_GLOB_MAXI {:>10}  RESI_GLOB_RELA {}\n",
-                    crate::interp::format::sci(t1, 6, false),
-                    crate::interp::format::sci(dt, 3, false),
+                    crate::text::sci(t1, 6, false),
+                    crate::text::sci(dt, 3, false),
                     iters,
-                    crate::interp::format::sci(abs, 3, false),
+                    crate::text::sci(abs, 3, false),
                     hist.join(" → "),
                 ));
                 return Ok(());

@@ -117,9 +117,9 @@ pub fn run(a: &Args, model: &ConceptRef, s: &Setup, el: &Elements, times: &[f64]
         let _ = writeln!(
             run.log,
             "  {n:>4}  {:>14}  {iters:>5}  {:>14}  {:>14}",
-            crate::interp::format::sci(t, 6, false),
-            crate::interp::format::sci(rel, 3, false),
-            crate::interp::format::sci(abs, 3, false)
+            crate::text::sci(t, 6, false),
+            crate::text::sci(rel, 3, false),
+            crate::text::sci(abs, 3, false)
         );
         run.log.push_str(&zone_state(s, el, &states, &x));
         run.steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(a, s, &x)? });
