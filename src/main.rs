@@ -17,13 +17,13 @@ struct Cli {
 #[derive(Subcommand)]
 enum Cmd {
     /// Run a case: CASE.export, or CASE.comm with --unit mappings; with no case,
-    /// the embedded demo scene (comm/hardening_curve.comm).
+    /// the embedded demo scene (comm/junction_2d.comm), its outputs in ./aster-out.
     Run {
         case: Option<PathBuf>,
         /// Map a logical unit to a file: N=PATH (read if it exists, else written).
         #[arg(long = "unit", value_name = "N=PATH")]
         units: Vec<String>,
-        /// Folder for the .mess and .resu files (default: current folder).
+        /// Folder for the .mess and .resu files (default: the current folder; ./aster-out for the demo).
         #[arg(long)]
         out: Option<PathBuf>,
         /// Do not echo the message file to stdout.
@@ -307,6 +307,8 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             };
+            // The demo writes in a folder of its own, not among the user's files.
+            let out = if case.is_none() { Some(out.unwrap_or_else(|| PathBuf::from("aster-out"))) } else { out };
             let opts = RunOptions { out_dir: out, units, echo: !quiet };
             // The runner catches panics of the interpreter and the stages with their location; this
             // catches one of the runner itself (reading units, delivering results).

@@ -257,6 +257,10 @@ fn run_text(
     // Results are delivered only from runs that did not stop on an error.
     if error.is_none() {
         for (from, to) in session.deliverables() {
+            // A unit may name a folder that does not exist yet (the demo's ./aster-out): make it.
+            if let Some(parent) = to.parent().filter(|p| !p.as_os_str().is_empty()) {
+                let _ = std::fs::create_dir_all(parent);
+            }
             if let Err(e) =
                 std::fs::read(&from).map_err(|e| e.to_string()).and_then(|b| write_atomic(&to, &b).map_err(|e| e.msg))
             {

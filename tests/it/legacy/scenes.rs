@@ -35,3 +35,22 @@ fn the_default_scene_is_a_comm_file() {
     let o = runner::run_default(&RunOptions { out_dir: Some(scratch!("default")), units: Vec::new(), echo: false });
     assert_eq!(o.diagnostic, "OK", "{:?}", o.error);
 }
+
+/// `aster run` with no case (the README's first command) writes the demo's outputs in ./aster-out and
+/// nothing else in the current folder.
+#[test]
+fn the_demo_writes_in_aster_out() {
+    let cwd = scratch!("demo-cwd");
+    let o = aster().args(["run", "--quiet"]).current_dir(&cwd).output().unwrap();
+    assert!(o.status.success(), "{:?}", text(&o));
+    let mut top: Vec<String> =
+        std::fs::read_dir(&cwd).unwrap().map(|e| e.unwrap().file_name().into_string().unwrap()).collect();
+    top.sort();
+    assert_eq!(top, ["aster-out"]);
+    for f in ["junction_2d.mess", "junction_2d.resu", "junction_2d.rmed"] {
+        assert!(cwd.join("aster-out").join(f).is_file(), "{f}");
+    }
+    let mess = std::fs::read_to_string(cwd.join("aster-out/junction_2d.mess")).unwrap();
+    assert!(mess.contains("DIAGNOSTIC JOB : OK"), "{mess}");
+    let _ = std::fs::remove_dir_all(&cwd);
+}

@@ -62,3 +62,25 @@ fn tests_readme_maps_every_command_and_legacy_case() {
         }
     }
 }
+
+/// docs/ARCHITECTURE.md's code map has a section for every top-level module of src/ (a `### ` heading that
+/// names `src/<module>/` or `src/<module>.rs`), so a new library cannot land undescribed.
+#[test]
+fn architecture_md_describes_every_top_level_module() {
+    let root = crate::common::root();
+    let doc = std::fs::read_to_string(root.join("docs/ARCHITECTURE.md")).unwrap();
+    let headings: Vec<&str> = doc.lines().filter(|l| l.starts_with("### ")).collect();
+    let mut missing = Vec::new();
+    for entry in std::fs::read_dir(root.join("src")).unwrap() {
+        let name = entry.unwrap().file_name().into_string().unwrap();
+        if name == "lib.rs" {
+            continue;
+        }
+        let named = if name.ends_with(".rs") { format!("`src/{name}`") } else { format!("`src/{name}/`") };
+        if !headings.iter().any(|h| h.contains(&named)) {
+            missing.push(named);
+        }
+    }
+    missing.sort();
+    assert!(missing.is_empty(), "docs/ARCHITECTURE.md has no code-map section for {}", missing.join(", "));
+}
