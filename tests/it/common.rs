@@ -83,3 +83,25 @@ pub fn two_cracks(
     let c2 = Rc::new(build_interface("MA".into(), mesh.clone(), l2, None, &masters, Some(point)).unwrap());
     (c1, c2)
 }
+
+/// A small seeded generator (xorshift64*) for the fuzzers and property tests: a run is replayed from its
+/// printed seed.
+pub struct Rng(pub u64);
+
+impl Rng {
+    pub fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+
+    /// Uniform in 0..n (0 when n is 0).
+    pub fn below(&mut self, n: usize) -> usize {
+        if n == 0 {
+            0
+        } else {
+            (self.next() % n as u64) as usize
+        }
+    }
+}
