@@ -238,6 +238,8 @@ pub enum LoadItem {
     SurfaceForce { cells: Vec<usize>, components: Vec<(String, LoadValue)> },
     /// PRES_REP: a pressure on skin cells.
     Pressure { cells: Vec<usize>, value: LoadValue },
+    /// PRES_REP with FISSURE: a pressure on both lips of an X-FEM crack of the model (its index there).
+    CrackPressure { crack: usize, name: String, value: LoadValue },
     /// PESANTEUR: gravity of magnitude `g` along `direction`, on the cells.
     Gravity { g: f64, direction: [f64; 3], cells: Option<Vec<usize>> },
     /// FLUX_THM_REP FLUN_HYDR1: a fluid mass flux entering through skin cells (kg m⁻² s⁻¹).

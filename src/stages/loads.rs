@@ -102,10 +102,25 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
         }
     }
     for occ in a.facts("PRES_REP") {
-        for k in ["FISSURE", "CISA_2D"] {
-            if occ.given(k) {
-                return Err(occ.err(k, "not supported yet"));
+        if occ.given("CISA_2D") {
+            return Err(occ.err("CISA_2D", "not supported yet"));
+        }
+        if occ.given("FISSURE") {
+            // The lips of X-FEM cracks of the model: PRES pushes them apart.
+            let value = occ.val("PRES").and_then(load_value).ok_or_else(|| occ.err("PRES", "PRES is required"))?;
+            let xm = mo.model()?.xfem.clone();
+            for fc in occ.concepts("FISSURE") {
+                let crack = fc.crack().map_err(|e| occ.locate(e, "FISSURE"))?;
+                let index = xm.as_ref().and_then(|xm| xm.cracks.iter().position(|k| Rc::ptr_eq(k, &crack)));
+                let Some(index) = index else {
+                    return Err(occ.err(
+                        "FISSURE",
+                        format!("{} is not a crack of model {} (MODI_MODELE_XFEM)", fc.label(), mo.label()),
+                    ));
+                };
+                items.push(LoadItem::CrackPressure { crack: index, name: fc.label(), value: value.clone() });
             }
+            continue;
         }
         let cells = select_cells(&mesh, occ, &name)?;
         let value = occ.val("PRES").and_then(load_value).ok_or_else(|| occ.err("PRES", "PRES is required"))?;

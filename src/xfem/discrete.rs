@@ -211,6 +211,47 @@ pub fn bulk_points(t: CellType, coords: &[[f64; 3]], xm: &XfemModel, cell: usize
     Ok(out)
 }
 
+/// The integration points of a model cell: those of its sub-cells when it is cut, else its RIGI rule.
+fn cell_points(t: CellType, coords: &[[f64; 3]], xm: &XfemModel, cell: usize) -> Result<Vec<BulkPoint>, String> {
+    if xm.cells.contains_key(&cell) {
+        return bulk_points(t, coords, xm, cell);
+    }
+    let rule = crate::fem::elasticity::rigi_rule(t);
+    let mut v = Vec::new();
+    for (q, w) in rule.points.iter().zip(&rule.weights) {
+        let (_, _, det) = real_gradients(t, coords, q).ok_or("degenerate cell")?;
+        v.push(BulkPoint { xi: *q, w: w * det, region: 0 });
+    }
+    Ok(v)
+}
+
+/// The nodal forces of a uniform body force `f` (force per unit volume, e.g. ρ g) on a cell, in
+/// [`XDofs::cell_dofs`] order: ∫ N_a f_i on the standard unknowns and ∫ N_a ψ f_i on the Heaviside ones,
+/// over the sub-cells of a cut cell.
+pub fn body_force(
+    t: CellType,
+    coords: &[[f64; 3]],
+    nodes: &[usize],
+    xm: &XfemModel,
+    cell: usize,
+    ndim: usize,
+    f: &[f64; 3],
+) -> Result<Vec<f64>, String> {
+    let cols = cell_columns(nodes, xm, ndim);
+    let mut fe = vec![0.0; cols.len()];
+    for p in cell_points(t, coords, xm, cell)? {
+        let ff = shape(t, &p.xi);
+        for (r, &(a, set, i)) in cols.iter().enumerate() {
+            let psi = match set {
+                None => 1.0,
+                Some(j) => xm.psi(nodes[a], j, p.region),
+            };
+            fe[r] += p.w * ff[a] * psi * f[i];
+        }
+    }
+    Ok(fe)
+}
+
 /// Stiffness matrix of a cell on its unknowns ([`XDofs::cell_dofs`] order),
 /// row-major; `hooke` on engineering strains of `nsig` components.
 #[allow(clippy::too_many_arguments)]
@@ -224,17 +265,7 @@ pub fn bulk_stiffness(
     nsig: usize,
     ndim: usize,
 ) -> Result<Vec<f64>, String> {
-    let points: Vec<BulkPoint> = if xm.cells.contains_key(&cell) {
-        bulk_points(t, coords, xm, cell)?
-    } else {
-        let rule = crate::fem::elasticity::rigi_rule(t);
-        let mut v = Vec::new();
-        for (q, w) in rule.points.iter().zip(&rule.weights) {
-            let (_, _, det) = real_gradients(t, coords, q).ok_or("degenerate cell")?;
-            v.push(BulkPoint { xi: *q, w: w * det, region: 0 });
-        }
-        v
-    };
+    let points = cell_points(t, coords, xm, cell)?;
     // Columns: (node index in cell, factor selector) per unknown.
     let cols = cell_columns(nodes, xm, ndim);
     let nd = cols.len();
@@ -492,6 +523,57 @@ pub fn facet_points(
         let t1 = t1 / t1.norm();
         let t2 = if dim == 3 { nrm.cross(&t1) } else { Vector3::zeros() };
         out.push(FacetPoint { xi, w: wq * measure, basis: [nrm.into(), t1.into(), t2.into()] });
+    }
+    Ok(out)
+}
+
+/// The nodal forces of a pressure `p` on both lips of crack `g` (PRES_REP with FISSURE): on every facet,
+/// ∫ p n·[[δu]] with n from the − to the + side, so that a positive pressure pushes the lips apart. Per
+/// cell that sees the crack, the forces in [`XDofs::cell_dofs`] order; only Heaviside unknowns carry
+/// them (the standard part of δu has no jump). `p` takes the real coordinates of a facet point.
+pub fn lip_pressure(
+    mesh: &Mesh,
+    xm: &XfemModel,
+    g: usize,
+    facets: &[Facet],
+    rule: &QuadratureRule,
+    ndim: usize,
+    p: &dyn Fn(&[f64; 3]) -> Result<f64, String>,
+) -> Result<Vec<(usize, Vec<f64>)>, String> {
+    let mut by_cell: BTreeMap<usize, Vec<&Facet>> = BTreeMap::new();
+    for f in facets {
+        by_cell.entry(f.cell).or_default().push(f);
+    }
+    let mut out = Vec::new();
+    for (c, fs) in by_cell {
+        let t = mesh.cell_types[c];
+        let nodes = &mesh.cells[c];
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let cols = cell_columns(nodes, xm, ndim);
+        let mut fe = vec![0.0; cols.len()];
+        for f in fs {
+            let code = super::levelset::region_code;
+            let (rm, rp) = (code(&f.slave), code(&f.master));
+            for q in facet_points(t, &coords, nodes, &xm.lsn[g], f, rule)? {
+                let ff = shape(t, &q.xi);
+                let mut x = [0.0; 3];
+                for (a, xa) in coords.iter().enumerate() {
+                    for k in 0..3 {
+                        x[k] += ff[a] * xa[k];
+                    }
+                }
+                let pq = p(&x)?;
+                if !pq.is_finite() {
+                    return Err(format!("the pressure is not finite at ({}, {}, {})", x[0], x[1], x[2]));
+                }
+                for (r, &(a, set, i)) in cols.iter().enumerate() {
+                    let Some(j) = set else { continue };
+                    let jc = xm.psi(nodes[a], j, rp) - xm.psi(nodes[a], j, rm);
+                    fe[r] += q.w * pq * ff[a] * jc * q.basis[0][i];
+                }
+            }
+        }
+        out.push((c, fe));
     }
     Ok(out)
 }

@@ -83,6 +83,12 @@ pub fn assemble(a: &Args, p: &Problem, model: &ConceptRef, inst: f64) -> Result<
                     })?;
                     cons.impose(dof, mult * load_value(value, &mesh.coords[*node], inst)?);
                 }
+                LoadItem::CrackPressure { name, .. } => {
+                    return Err(a.err(
+                        "EXCIT",
+                        format!("load {}: PRES_REP on the lips of {name} needs the X-FEM model", lc.label()),
+                    ))
+                }
                 LoadItem::Relation { terms, value } => {
                     let mut t = Vec::new();
                     for (node, comp, coef) in terms {

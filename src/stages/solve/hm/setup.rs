@@ -161,6 +161,11 @@ pub fn loads_at(
                         }
                     }
                 }
+                LoadItem::CrackPressure { name: crack, .. } => {
+                    return Err(
+                        a.err("EXCIT", format!("load {name}: PRES_REP on the lips of {crack} needs the X-FEM model"))
+                    )
+                }
                 LoadItem::Relation { terms, value } => {
                     let mut tt = Vec::new();
                     for (node, comp, coef) in terms {

@@ -60,6 +60,7 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<(C
     let mut hydraulic: BTreeMap<(usize, String), f64> = BTreeMap::new();
     let mut blocked_dir = vec![false; ndim];
     let mut jump_cache: BTreeMap<(usize, String), bool> = BTreeMap::new();
+    let mut flux_loads: Vec<String> = Vec::new();
     for (lc, mult) in loads(a, t)? {
         let data = lc.data();
         let ConceptData::Load(load) = &*data else {
@@ -72,9 +73,25 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<(C
         }
         for item in &load.items {
             let LoadItem::Dof { node, component, value } = item else {
-                return Err(
-                    a.err("EXCIT", format!("load {}: only DDL_IMPO is supported yet on an X-FEM model", lc.label()))
-                );
+                // Lip pressures and gravity are forces (`super::forces`); nothing else is supported yet.
+                if matches!(item, LoadItem::CrackPressure { .. } | LoadItem::Gravity { .. }) {
+                    continue;
+                }
+                // A fluid flux acts on the hydraulic equations only; they are eliminated when every
+                // hydraulic unknown is prescribed (checked below), and then it changes no unknown.
+                if s.hm && matches!(item, LoadItem::FluxThm { .. }) {
+                    if !flux_loads.contains(&lc.label()) {
+                        flux_loads.push(lc.label());
+                    }
+                    continue;
+                }
+                return Err(a.err(
+                    "EXCIT",
+                    format!(
+                        "load {}: only DDL_IMPO, PRES_REP with FISSURE and PESANTEUR are supported yet on an X-FEM model",
+                        lc.label()
+                    ),
+                ));
             };
             let n = *node;
             let Some(std) = xd.std[n] else {
@@ -158,7 +175,14 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<(C
             }
         }
     }
-    let report = if s.hm { hydraulic_report(a, s, &hydraulic)? } else { String::new() };
+    let mut report = if s.hm { hydraulic_report(a, s, &hydraulic)? } else { String::new() };
+    if !flux_loads.is_empty() {
+        let _ = writeln!(
+            report,
+            "    FLUX_THM_REP of {}: on the eliminated hydraulic equations only, so it changes no unknown",
+            flux_loads.join(", ")
+        );
+    }
     let pins = pin_translations(s, &mut cons, &blocked_dir);
     Ok((cons, report, pins))
 }

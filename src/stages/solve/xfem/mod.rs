@@ -13,6 +13,7 @@
 
 mod assemble;
 mod conditions;
+mod forces;
 mod report;
 mod setup;
 mod step;

@@ -57,6 +57,7 @@ pub fn run(a: &Args, model: &ConceptRef, s: &Setup, el: &Elements, times: &[f64]
             run.pinned = pins;
         }
         let map = DofMap::build(xd.n, &cons).map_err(|e| a.err("EXCIT", e.to_string()))?;
+        let fext = super::forces::external(a, s, t)?;
         run.nfree = map.nfree;
         // Start from the previous state with this step's imposed values.
         let free: Vec<f64> = map.free_to_full.iter().map(|&d| x[d]).collect();
@@ -79,6 +80,7 @@ pub fn run(a: &Args, model: &ConceptRef, s: &Setup, el: &Elements, times: &[f64]
             pattern,
             states: &states,
             x,
+            fext: fext.as_deref(),
             ref_hist,
             rf: Vec::new(),
             k: None,
@@ -153,6 +155,8 @@ struct XfemStep<'s> {
     pattern: SparsityPattern,
     states: &'s [CzmState],
     x: Vec<f64>,
+    /// The external forces of the instant (lip pressures), if any.
+    fext: Option<&'s [f64]>,
     ref_hist: f64,
     /// Of the last residual: the reduced residual and the tangent.
     rf: Vec<f64>,
@@ -214,6 +218,14 @@ impl NewtonStep for XfemStep<'_> {
             asm.add_matrix(&dofs, &ke);
         }
         let (k, _) = asm.finish();
+        // r = F_int − F_ext; the external forces enter the reference with the reactions.
+        let mut fmax: f64 = 0.0;
+        if let Some(f) = self.fext {
+            for (rd, fd) in r.iter_mut().zip(f) {
+                *rd -= fd;
+            }
+            fmax = inf_norm(f);
+        }
         self.t_asm += ta.elapsed();
         // Reduced residual and reference (reactions at prescribed unknowns).
         let mut rf = vec![0.0; self.map.nfree];
@@ -227,6 +239,7 @@ impl NewtonStep for XfemStep<'_> {
             }
         }
         let abs = inf_norm(&rf);
+        let reactions = reactions.max(fmax);
         self.vanished = reactions <= 1e-6 * self.ref_hist;
         self.reactions = reactions;
         let scale_ref = if self.vanished { self.ref_hist } else { reactions };
