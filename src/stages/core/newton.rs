@@ -89,18 +89,6 @@ pub fn refuse_unsupported_options_except(a: &Args, handled: &[&str]) -> Result<(
     if a.text("METHODE").is_some_and(|m| m != "NEWTON") {
         return Err(a.err("METHODE", "only METHODE='NEWTON' is supported yet"));
     }
-    if handled.contains(&"ARCHIVAGE") {
-        return Ok(());
-    }
-    // ARCHIVAGE: every instant is stored; a selection of instants or fields is not supported yet.
-    if let Some(arch) = a.fact("ARCHIVAGE") {
-        for kw in ["INST", "LIST_INST", "PAS_ARCH", "CHAM_EXCLU"] {
-            if arch.declares(kw) && arch.given(kw) {
-                return Err(arch.err(kw, "selective archiving is not supported yet (every instant is stored)"));
-            }
-        }
-        arch.read_all();
-    }
     Ok(())
 }
 
@@ -239,6 +227,89 @@ pub fn newton(a: &Args, conv: &Convergence, linear: bool, t: f64, step: &mut imp
         })?;
         step.correct()?;
         iters += 1;
+    }
+}
+
+/// What ARCHIVAGE keeps of a computation (as Code_Aster's storage manager): the initial state, the
+/// instants of INST / LIST_INST (within PRECISION, by CRITERE) or every PAS_ARCH-th instant, always the
+/// last one; the fields of CHAM_EXCLU are left out of every stored instant but the last.
+pub struct Archive {
+    /// The instants stored beyond the initial state.
+    pub instants: Vec<f64>,
+    pub excluded: Vec<String>,
+}
+
+impl Archive {
+    /// ARCHIVAGE of a STAT_NON_LINE over `times` (the initial instant first).
+    pub fn from_args(a: &Args, times: &[f64]) -> Result<Archive> {
+        let all = Archive { instants: times[1..].to_vec(), excluded: Vec::new() };
+        let Some(arch) = a.fact("ARCHIVAGE") else { return Ok(all) };
+        let excluded = arch.texts("CHAM_EXCLU");
+        let wanted: Option<(Vec<f64>, &str)> = if arch.has("INST") {
+            Some((arch.reals("INST"), "INST"))
+        } else if let Some(l) = arch.concept("LIST_INST") {
+            Some((l.reals().map_err(|e| arch.err("LIST_INST", e.msg))?, "LIST_INST"))
+        } else {
+            None
+        };
+        let mut out = Vec::new();
+        match wanted {
+            Some((list, kw)) => {
+                let crit = arch.text("CRITERE").unwrap_or("RELATIF");
+                let prec = arch.real("PRECISION").unwrap_or(1e-6);
+                for &t in &times[1..] {
+                    let tol = if crit == "ABSOLU" { prec } else { prec * t.abs() };
+                    if list.iter().any(|&x| (x - t).abs() <= tol) {
+                        out.push(t);
+                    }
+                }
+                // Instants asked for that the computation never reaches are left out, as Code_Aster does;
+                // a list that selects none would store nothing.
+                if out.is_empty() {
+                    return Err(arch.err(kw, "no instant of the computation is selected"));
+                }
+            }
+            None => {
+                let pas = arch.int("PAS_ARCH").unwrap_or(1).max(1) as usize;
+                out.extend(times[1..].iter().enumerate().filter(|(k, _)| (k + 1) % pas == 0).map(|(_, t)| *t));
+            }
+        }
+        let last = *times.last().expect("an initial instant at least");
+        if times.len() > 1 && out.last() != Some(&last) {
+            out.push(last);
+        }
+        Ok(Archive { instants: out, excluded })
+    }
+
+    /// Is the instant `t` of the computation stored?
+    pub fn keeps(&self, t: f64) -> bool {
+        self.instants.iter().any(|&k| (k - t).abs() <= 1e-12 * t.abs().max(1e-300))
+    }
+
+    /// The stored steps of a computation that stored every instant (the initial state first when
+    /// `initial`): renumbered from 0 (or 1), CHAM_EXCLU's fields removed but at the last.
+    pub fn select(
+        &self,
+        steps: Vec<crate::concepts::result::Step>,
+        initial: bool,
+    ) -> Vec<crate::concepts::result::Step> {
+        let first = if initial { 0 } else { 1 };
+        let mut kept: Vec<crate::concepts::result::Step> = steps
+            .into_iter()
+            .enumerate()
+            .filter(|(k, s)| (initial && *k == 0) || self.keeps(s.inst))
+            .map(|(_, s)| s)
+            .collect();
+        let n = kept.len();
+        for (k, s) in kept.iter_mut().enumerate() {
+            s.nume_ordre = (first + k) as i64;
+            if k + 1 < n {
+                for f in &self.excluded {
+                    s.fields.remove(f);
+                }
+            }
+        }
+        kept
     }
 }
 

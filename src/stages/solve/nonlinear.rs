@@ -44,6 +44,7 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let chmat = a.req_concept("CHAM_MATER")?;
     let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
     let times = instants(a)?;
+    let archive = crate::stages::core::newton::Archive::from_args(a, &times)?;
     let opts = solver_options(a)?;
     let nfull = p.numbering.ndofs();
     let mut u = vec![0.0; nfull];
@@ -75,6 +76,7 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         p.modelisation.name(),
         nfull
     ));
+    let steps = archive.select(steps, true);
     let loads = a.facts("EXCIT").iter().filter_map(|o| o.concept("CHARGE")).collect();
     Ok(Some(ConceptData::Result(ResultData { model, material: Some(chmat), loads, steps })))
 }

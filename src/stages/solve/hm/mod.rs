@@ -40,7 +40,7 @@ pub fn stat_non_line_hm(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result<O
     let p = hm_problem(model, &chmat).map_err(|e| e.at(a.span_of("MODELE")))?;
     let times = instants(a)?;
     let subd = subdivision(a);
-    let archive = setup::archive(a, &times)?;
+    let archive = crate::stages::core::newton::Archive::from_args(a, &times)?;
     // The HM tangent is not symmetric (and its pressure block is negative): an LU factorization.
     let opts = crate::solve::SolverOptions { method: crate::solve::Method::Lu, ..solver_options(a)? };
     let (mut u, mut states) = fields::initial_state(a, &p)?;
@@ -50,9 +50,15 @@ pub fn stat_non_line_hm(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result<O
     for w in times.windows(2) {
         let (t0, t1) = (w[0], w[1]);
         driver.advance(t0, t1, &mut u, &mut states, 0, &mut log)?;
-        if archive.iter().any(|&k| (k - t1).abs() <= 1e-12 * t1.abs().max(1e-300)) {
+        if archive.keeps(t1) {
             let n = steps.len() as i64;
-            steps.push(Step { nume_ordre: n, inst: t1, fields: fields::step_fields(&p, &u, &states) });
+            let mut fields = fields::step_fields(&p, &u, &states);
+            if t1 != *times.last().expect("instants") {
+                for f in &archive.excluded {
+                    fields.remove(f);
+                }
+            }
+            steps.push(Step { nume_ordre: n, inst: t1, fields });
         }
     }
     let report = setup::report(&p, a, &times, theta, &log, steps.len(), t_start.elapsed().as_secs_f64())?;

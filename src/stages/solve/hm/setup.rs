@@ -60,49 +60,6 @@ pub fn theta(a: &Args) -> Result<f64> {
     Ok(theta)
 }
 
-/// The instants to store beyond the initial state: ARCHIVAGE INST / LIST_INST (within PRECISION), every
-/// PAS_ARCH-th instant, and always the last one (Code_Aster archives the end of the computation).
-pub fn archive(a: &Args, times: &[f64]) -> Result<Vec<f64>> {
-    let Some(arch) = a.fact("ARCHIVAGE") else { return Ok(times[1..].to_vec()) };
-    if arch.given("CHAM_EXCLU") {
-        return Err(arch.err("CHAM_EXCLU", "not supported yet (every field is stored)"));
-    }
-    let wanted: Option<(Vec<f64>, &str)> = if arch.has("INST") {
-        Some((arch.reals("INST"), "INST"))
-    } else if let Some(l) = arch.concept("LIST_INST") {
-        Some((l.reals().map_err(|e| arch.err("LIST_INST", e.msg))?, "LIST_INST"))
-    } else {
-        None
-    };
-    let mut out = Vec::new();
-    match wanted {
-        Some((list, kw)) => {
-            let crit = arch.text("CRITERE").unwrap_or("RELATIF");
-            let prec = arch.real("PRECISION").unwrap_or(1e-6);
-            for &t in &times[1..] {
-                let tol = if crit == "ABSOLU" { prec } else { prec * t.abs() };
-                if list.iter().any(|&x| (x - t).abs() <= tol) {
-                    out.push(t);
-                }
-            }
-            // Instants asked for that the computation never reaches are left out, as Code_Aster does;
-            // a list that selects none would store nothing.
-            if out.is_empty() {
-                return Err(arch.err(kw, "no instant of the computation is selected"));
-            }
-        }
-        None => {
-            let pas = arch.int("PAS_ARCH").unwrap_or(1).max(1) as usize;
-            out.extend(times[1..].iter().enumerate().filter(|(k, _)| (k + 1) % pas == 0).map(|(_, t)| *t));
-        }
-    }
-    let last = *times.last().unwrap();
-    if out.last() != Some(&last) {
-        out.push(last);
-    }
-    Ok(out)
-}
-
 /// The loads of EXCIT over a step ending at `t` of length `dt`: the kinematic conditions (values at
 /// `t`) and the external forces: nodal, surface and pressure forces on the displacements, the weight of
 /// the mixture (PESANTEUR, with THM_DIFFU RHO), and FLUX_THM_REP on the pressures (`−Δt ∫ N̂ q`).

@@ -60,7 +60,12 @@ fn solve_xfem(
     let t_start = Instant::now();
     let s = setup::setup(a, model)?;
     let el = assemble::elements(a, &s)?;
-    let run = step::run(a, model, &s, &el, &times, statics)?;
+    // ARCHIVAGE (STAT_NON_LINE): the instants and fields stored.
+    let archive = if statics { None } else { Some(crate::stages::core::newton::Archive::from_args(a, &times)?) };
+    let mut run = step::run(a, model, &s, &el, &times, statics)?;
+    if let Some(archive) = archive {
+        run.steps = archive.select(std::mem::take(&mut run.steps), true);
+    }
     ctx.io.mess(&report::run_log(command, model, &s, &el, &run, t_start));
     let loads = a.facts("EXCIT").iter().filter_map(|o| o.concept("CHARGE")).collect();
     Ok(Some(ConceptData::Result(ResultData {
