@@ -100,38 +100,13 @@ impl Session {
             .collect()
     }
 
-    fn run_command(
-        &mut self,
-        name: &'static str,
-        kwargs: Vec<KwArg>,
-        span: Span,
-        target: Option<&str>,
-    ) -> Result<Value> {
+    fn run_command(&mut self, name: &'static str, kwargs: Vec<KwArg>, span: Span) -> Result<Value> {
         let cmd = catalogue().get(name).expect("host only calls catalogue commands");
         let validated = validate::validate(cmd, kwargs, span)?;
         let args = validated.args;
-        if let Some(reuse) = &validated.reuse {
-            // `CMD(reuse=X, ...)` alone modifies X in place; `Y = CMD(reuse=X, ...)` needs Y to be X.
-            let same = match target {
-                None => true,
-                Some(t) => self
-                    .globals
-                    .borrow()
-                    .get(t)
-                    .map(|v| matches!(v, Value::Concept(c) if std::rc::Rc::ptr_eq(c, reuse)))
-                    .unwrap_or(false),
-            };
-            if !same {
-                return Err(Error::catalog(format!(
-                    "reuse={} must name the concept the result is assigned to ({} = {name}(reuse={}, ...))",
-                    reuse.label(),
-                    reuse.label(),
-                    reuse.label()
-                ))
-                .at(span)
-                .in_command(name));
-            }
-        }
+        // `CMD(reuse=X, ...)` modifies X in place and returns it: `Y = CMD(reuse=X, ...)` makes Y another
+        // name of X, as in Code_Aster 2025, whose import drops `reuse` and whose reentrant commands
+        // return the object they modify (wtnv122d: `MAILLAGE = MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, ...)`).
         let kind = match &cmd.produces {
             Produces::Nothing => None,
             Produces::Fixed(k) => Some(*k),
@@ -212,7 +187,7 @@ impl Host for Session {
         crate::diag::check_deadline().map_err(|e| e.at(span).in_command(name))?;
         let t0 = Instant::now();
         // A panic of the catalogue or of the stage (a bug of ours) stops the run as a located error.
-        let r = super::guard::catch(|| self.run_command(name, kwargs, span, target))
+        let r = super::guard::catch(|| self.run_command(name, kwargs, span))
             .unwrap_or_else(|panic| Err(Error::internal(&panic).at(span).in_command(name)));
         let dt = t0.elapsed().as_secs_f64();
         if self.mode == Mode::Run {

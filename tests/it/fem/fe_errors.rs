@@ -129,3 +129,22 @@ fn newton_that_does_not_converge() {
         "{err}"
     );
 }
+
+/// `Y = CMD(reuse=X, ...)` (wtnv122d: `MAILLAGE = MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, ...)`) modifies X
+/// in place and makes Y another name of it, as Code_Aster 2025 does: the group DEFI_GROUP adds under
+/// the name MA2 is on MA, and a solve through either name passes its check.
+#[test]
+fn reuse_under_another_name_is_the_same_concept() {
+    let (code, err) = run(
+        "reuse-alias",
+        "MA2 = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_MA=_F(NOM='TOUTES', GROUP_MA='SURFACE'))\n\
+         CHMAT = AFFE_MATERIAU(MAILLAGE=MA2, AFFE=_F(GROUP_MA='TOUTES', MATER=ACIER))\n\
+         CH = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=(_F(GROUP_NO='GAUCHE', DX=0.), _F(GROUP_NO='BAS', DY=0.)),\n\
+                             FORCE_NODALE=_F(GROUP_NO='DROITE', FX=1.))\n\
+         R = MECA_STATIQUE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=CH))\n\
+         TEST_RESU(RESU=_F(RESULTAT=R, NUME_ORDRE=1, NOM_CHAM='DEPL', NOM_CMP='DX', TYPE_TEST='MIN',\n\
+                           VALE_CALC=0.0, CRITERE='ABSOLU'))\n\
+         FIN()\n",
+    );
+    assert_eq!(code, 0, "{err}");
+}
