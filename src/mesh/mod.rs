@@ -3,6 +3,7 @@
 //! Cells are stored with their nodes in Code_Aster's local order; converting
 //! from and to other orders (MED) is the job of the format layer alone.
 
+pub mod aster_text;
 pub mod convert;
 pub mod derive;
 pub mod generate;

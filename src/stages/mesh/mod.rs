@@ -27,11 +27,23 @@ use std::rc::Rc;
 
 pub fn lire_maillage(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let format = a.text("FORMAT").unwrap_or("MED");
-    if format != "MED" {
-        return Err(a.err("FORMAT", format!("FORMAT='{format}' is not supported yet (only 'MED')")));
+    if format != "MED" && format != "ASTER" {
+        return Err(a.err("FORMAT", format!("FORMAT='{format}' is not supported yet (only 'MED' and 'ASTER')")));
     }
     let unit = a.int("UNITE").unwrap_or(20);
     let path = ctx.io.unit_path(unit, false).map_err(|e| a.locate(e, "UNITE"))?;
+    if format == "ASTER" {
+        // Code_Aster's text format (.mail).
+        let bytes = std::fs::read(&path)
+            .map_err(|e| a.err("UNITE", format!("unit {unit}: cannot read {}: {e}", path.display())))?;
+        let src = String::from_utf8_lossy(&bytes);
+        let file = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+        let mesh = crate::mesh::aster_text::read(&src, &file).map_err(|e| a.err("UNITE", e))?;
+        if a.int("INFO").unwrap_or(1) >= 2 {
+            ctx.io.mess(&format!("LIRE_MAILLAGE: unit {unit} ({})\n{}", path.display(), mesh.describe(&file)));
+        }
+        return Ok(Some(ConceptData::Mesh(Rc::new(mesh))));
+    }
     let nom_med = a.text("NOM_MED");
     let mesh =
         med::read_mesh(&path, nom_med).map_err(|e| a.locate(e, if nom_med.is_some() { "NOM_MED" } else { "UNITE" }))?;

@@ -2,6 +2,7 @@
 //! conformance run against tests/passing.txt), the 2025 corpus cases that call POST_ERREUR, rung (b)
 //! variants, WTNV149 and our own scenes of comm/.
 mod astest;
+mod hm_corpus;
 mod post_erreur_corpus;
 mod rung_b;
 mod scenes;
