@@ -41,12 +41,17 @@ pub fn stat_non_line_hm(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result<O
     let times = instants(a)?;
     let subd = subdivision(a);
     let archive = setup::archive(a, &times)?;
-    // The HM tangent is not symmetric (and its pressure block is negative): an LU factorization.
-    let opts = crate::solve::SolverOptions { method: crate::solve::Method::Lu, ..solver_options(a)? };
+    // The HM tangent is symmetric only once its pressure rows are scaled, and not always (see
+    // `step::Driver::factor_solve`): the solver chooses LDLᵀ or LU by testing it.
+    let opts = crate::solve::SolverOptions { method: crate::solve::Method::Auto, ..solver_options(a)? };
+    let rho: Vec<f64> = p.elements().map(|(_, c)| c.mat.rho_l).collect();
+    let pressure_row_scale =
+        if rho.iter().all(|&r| r == rho[0] && r > 0.0) { 1.0 / rho.first().copied().unwrap_or(1.0) } else { 0.0 };
     let (mut u, mut states) = fields::initial_state(a, &p)?;
     let mut steps = vec![Step { nume_ordre: 0, inst: times[0], fields: fields::step_fields(&p, &u, &states) }];
     let mut log = step::StepLog::default();
-    let driver = step::Driver { a, p: &p, conv, opts, theta, subd };
+    let driver =
+        step::Driver { a, p: &p, conv, opts, theta, subd, analysis: std::cell::RefCell::new(None), pressure_row_scale };
     for w in times.windows(2) {
         let (t0, t1) = (w[0], w[1]);
         driver.advance(t0, t1, &mut u, &mut states, 0, &mut log)?;
