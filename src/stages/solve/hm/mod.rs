@@ -41,9 +41,12 @@ pub fn stat_non_line_hm(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result<O
     let times = instants(a)?;
     let subd = subdivision(a);
     let archive = setup::archive(a, &times)?;
-    // The HM tangent is symmetric only once its pressure rows are scaled, and not always (see
-    // `step::Driver::factor_solve`): the solver chooses LDLᵀ or LU by testing it.
-    let opts = crate::solve::SolverOptions { method: crate::solve::Method::Auto, ..solver_options(a)? };
+    // The HM tangent is symmetric only once its pressure rows are scaled, and not exactly (see
+    // `step::Driver::factor_solve`): ∂M/∂ε_v = ρ (b + (b − φ) ε_v) against ∂σ_p/∂p = −b, the density's
+    // derivative. The solver takes LDLᵀ of its lower triangle when the difference is below 1e-8 of its
+    // largest entry, refines against the matrix itself to round-off (LU takes over when it cannot), and
+    // LU beyond.
+    let opts = crate::solve::SolverOptions { method: crate::solve::Method::Auto, sym_tol: 1e-8, ..solver_options(a)? };
     let rho: Vec<f64> = p.elements().map(|(_, c)| c.mat.rho_l).collect();
     let pressure_row_scale =
         if rho.iter().all(|&r| r == rho[0] && r > 0.0) { 1.0 / rho.first().copied().unwrap_or(1.0) } else { 0.0 };

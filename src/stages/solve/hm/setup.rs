@@ -382,7 +382,7 @@ pub fn report(
     let t = &log.solver;
     s.push_str(&format!(
         "    time      : elements and assembly {:.3} s; {} factorizations: analysis {:.3} s, factorization {:.3} s, \
-         condition {:.3} s, solves {:.3} s\n",
+         condition (first factorization) {:.3} s, solves {:.3} s\n",
         log.assembly,
         log.factorizations,
         t.symbolic.as_secs_f64(),

@@ -37,6 +37,8 @@ pub struct StepLog {
     /// condition estimate, solves and refinement.
     pub solver: solve::Timings,
     pub factorizations: usize,
+    /// The condition estimate of the first factorization (the only one estimated).
+    pub condition: Option<f64>,
     /// The last factorization's summary and residual, for the solver line of the log.
     pub last_solve: Option<(solve::FactorInfo, f64, usize)>,
 }
@@ -220,7 +222,11 @@ impl Driver<'_> {
         } else {
             (k.clone(), rhs.to_vec())
         };
-        let sol = solve::solve_with(k.as_ref(), &rhs, &self.opts, &mut self.analysis.borrow_mut()).map_err(|e| {
+        // The condition number is estimated on the first factorization only: it costs about ten solves,
+        // as much as the factorization itself on large 2D systems, and the steps that follow change the
+        // tangent little (NPREC still checks every factorization's pivots).
+        let opts = SolverOptions { condition: self.opts.condition && log.factorizations == 0, ..self.opts };
+        let sol = solve::solve_with(k.as_ref(), &rhs, &opts, &mut self.analysis.borrow_mut()).map_err(|e| {
             let msg = crate::stages::core::solver::solve_error(e, &self.opts, &|d| {
                 p.numbering.label(map.free_to_full[d], Some(&p.mesh))
             });
@@ -231,8 +237,12 @@ impl Driver<'_> {
         t.factorization += s.factorization;
         t.condition += s.condition;
         t.solve += s.solve;
+        if log.factorizations == 0 {
+            log.condition = sol.info.condition;
+        }
         log.factorizations += 1;
-        log.last_solve = Some((sol.info, sol.residual, sol.refinements));
+        let info = solve::FactorInfo { condition: log.condition, ..sol.info };
+        log.last_solve = Some((info, sol.residual, sol.refinements));
         Ok(sol.x)
     }
 
