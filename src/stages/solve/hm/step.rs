@@ -190,11 +190,12 @@ impl Driver<'_> {
         (if scale > 0.0 { abs / scale } else { abs }, abs)
     }
 
-    /// Solve the reduced system. The pressure rows are first divided by the liquid's density ρ₀: with a
-    /// constant density (UN_SUR_K = 0) and the coupling terms at the same points (every variant but
-    /// `*_HMS`) the tangent is then symmetric — indefinite, its pressure block negative — and the solver
-    /// takes LDLᵀ with its fill-reducing ordering on both cores; otherwise the symmetry test fails and it
-    /// takes LU. The scaling changes neither the solution nor the residual Newton tests.
+    /// Solve the reduced system. The pressure rows are first divided by the liquid's density ρ₀: with the
+    /// coupling terms at the same points (every variant but `*_HMS`) the tangent is then symmetric —
+    /// indefinite, its pressure block negative — up to the derivatives of the density and the porosity
+    /// (∂M/∂ε_v = ρ (b + (b − φ) ε_v)); within the driver's tolerance the solver takes LDLᵀ with its
+    /// fill-reducing ordering on both cores, refined against the matrix itself, and LU otherwise. The
+    /// scaling changes neither the solution nor the residual Newton tests.
     fn factor_solve(
         &self,
         map: &DofMap,
