@@ -89,6 +89,13 @@ pub fn parse_mess(text: &str, m: &mut Metrics) {
             in_steps = false;
             continue;
         }
+        // The HM driver: "steps     : ... computed (0 cut), 4 stored, 12 Newton iterations in all, 0.3 s".
+        if let Some((head, _)) = t.split_once(" Newton iterations in all").filter(|_| t.starts_with("steps")) {
+            if let Some(Ok(it)) = head.rsplit(' ').next().map(str::parse::<u64>) {
+                *m.newton.get_or_insert(0) += it;
+                continue;
+            }
+        }
         if w.first() == Some(&"step") && w.get(2) == Some(&"iters") {
             in_steps = true;
             continue;
@@ -183,5 +190,16 @@ mod tests {
         assert!((m.check_max.unwrap() - 1e-3).abs() < 1e-12);
         assert!((m.check_by_legend["check:XXXX"] - 1e-3).abs() < 1e-12);
         assert_eq!(m.check_by_legend["check:DY"], 1e-9);
+    }
+
+    #[test]
+    fn reads_the_newton_iterations_of_the_hm_driver() {
+        let mess = "  STAT_NON_LINE (D_PLAN_HM, KIT_HM ELAS/LIQU_SATU/HYDR_UTIL, θ = 1): 4 cells\n\
+            \x20   steps     : 3 instants from 0 to 3, 3 computed (0 cut), 3 stored, 11 Newton iterations in all, \
+            0.010 s\n\
+            \x20 INST   1.000000e+00  Δt   1.000e+00  iterations  4  RESI_GLOB_MAXI  1.0e-14  RESI_GLOB_RELA 1.0e-15\n";
+        let mut m = Metrics::default();
+        parse_mess(mess, &mut m);
+        assert_eq!(m.newton, Some(11));
     }
 }

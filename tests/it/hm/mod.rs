@@ -1,8 +1,11 @@
 //! Coupled hydro-mechanics end to end on command files of our own: Newton's quadratic convergence on a
-//! strongly nonlinear liquid, the elimination of prescribed pressures, and located errors on bad input.
+//! strongly nonlinear liquid, the elimination of prescribed pressures, located errors on bad input,
+//! Terzaghi's consolidation over h, Δt and θ (the orders of convergence), and the choice of LDLᵀ or LU.
 mod bad_input;
 mod elimination;
 mod newton;
+mod solver;
+mod terzaghi_study;
 
 use aster::med;
 use aster::mesh::Mesh;

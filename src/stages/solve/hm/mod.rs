@@ -41,12 +41,20 @@ pub fn stat_non_line_hm(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result<O
     let times = instants(a)?;
     let subd = subdivision(a);
     let archive = crate::stages::core::newton::Archive::from_args(a, &times)?;
-    // The HM tangent is not symmetric (and its pressure block is negative): an LU factorization.
-    let opts = crate::solve::SolverOptions { method: crate::solve::Method::Lu, ..solver_options(a)? };
+    // The HM tangent is symmetric only once its pressure rows are scaled, and not exactly (see
+    // `step::Driver::factor_solve`): ∂M/∂ε_v = ρ (b + (b − φ) ε_v) against ∂σ_p/∂p = −b, the density's
+    // derivative. The solver takes LDLᵀ of its lower triangle when the difference is below 1e-8 of its
+    // largest entry, refines against the matrix itself to round-off (LU takes over when it cannot), and
+    // LU beyond.
+    let opts = crate::solve::SolverOptions { method: crate::solve::Method::Auto, sym_tol: 1e-8, ..solver_options(a)? };
+    let rho: Vec<f64> = p.elements().map(|(_, c)| c.mat.rho_l).collect();
+    let pressure_row_scale =
+        if rho.iter().all(|&r| r == rho[0] && r > 0.0) { 1.0 / rho.first().copied().unwrap_or(1.0) } else { 0.0 };
     let (mut u, mut states) = fields::initial_state(a, &p)?;
     let mut steps = vec![Step { nume_ordre: 0, inst: times[0], fields: fields::step_fields(&p, &u, &states) }];
     let mut log = step::StepLog::default();
-    let driver = step::Driver { a, p: &p, conv, opts, theta, subd };
+    let driver =
+        step::Driver { a, p: &p, conv, opts, theta, subd, analysis: std::cell::RefCell::new(None), pressure_row_scale };
     for w in times.windows(2) {
         let (t0, t1) = (w[0], w[1]);
         driver.advance(t0, t1, &mut u, &mut states, 0, &mut log)?;

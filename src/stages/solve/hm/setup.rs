@@ -337,6 +337,21 @@ pub fn report(
         log.iterations,
         seconds
     ));
+    if let Some((info, residual, refinements)) = &log.last_solve {
+        let sv = crate::stages::core::solver::solveur(a)?;
+        s.push_str(&crate::stages::core::solver::solver_log(&sv, info, *residual, *refinements));
+    }
+    let t = &log.solver;
+    s.push_str(&format!(
+        "    time      : elements and assembly {:.3} s; {} factorizations: analysis {:.3} s, factorization {:.3} s, \
+         condition (first factorization) {:.3} s, solves {:.3} s\n",
+        log.assembly,
+        log.factorizations,
+        t.symbolic.as_secs_f64(),
+        t.factorization.as_secs_f64(),
+        t.condition.as_secs_f64(),
+        t.solve.as_secs_f64()
+    ));
     s.push_str(&log.table);
     Ok(s)
 }

@@ -16,9 +16,10 @@ use crate::fem::assembly::{Assembler, ElementDofs, SparsityPattern};
 use crate::fem::dofs::{Constraints, DofMap};
 use crate::hm::element::{element, StepData};
 use crate::hm::law::PointState;
-use crate::solve::{self, SolverOptions};
+use crate::solve::{self, Analysis, SolverOptions};
 use crate::stages::core::hm::HmProblem;
 use crate::stages::core::newton::{inf_norm, Convergence};
+use std::cell::RefCell;
 
 /// What the steps did, for the report.
 #[derive(Debug, Default)]
@@ -30,6 +31,16 @@ pub struct StepLog {
     pub eliminated_u: usize,
     pub eliminated_p: usize,
     pub table: String,
+    /// Seconds in the element computations and the assembly (every assembly of every step).
+    pub assembly: f64,
+    /// Seconds in the solver, summed over every factorization: analysis, numeric factorization,
+    /// condition estimate, solves and refinement.
+    pub solver: solve::Timings,
+    pub factorizations: usize,
+    /// The condition estimate of the first factorization (the only one estimated).
+    pub condition: Option<f64>,
+    /// The last factorization's summary and residual, for the solver line of the log.
+    pub last_solve: Option<(solve::FactorInfo, f64, usize)>,
 }
 
 /// Why a step failed: Code_Aster's event ERREUR (which DEFI_LIST_INST may answer by cutting the step).
@@ -53,6 +64,11 @@ pub struct Driver<'a> {
     pub opts: SolverOptions,
     pub theta: f64,
     pub subd: Option<Subdivision>,
+    /// The symbolic analysis of the last factorization, reused while the pattern holds.
+    pub analysis: RefCell<Option<Analysis>>,
+    /// The factor of the pressure rows that makes the tangent symmetric when it can be (1/ρ₀ of the
+    /// liquid: the coupling blocks are −b Q and −ρ b Qᵀ), 0 when the materials disagree on ρ₀.
+    pub pressure_row_scale: f64,
 }
 
 /// What every assembly of a step shares: the matrix structure, the external forces, the instants.
@@ -71,6 +87,7 @@ struct Assembled {
     rhs: Vec<f64>,
     fint: Vec<f64>,
     states: Vec<Vec<PointState>>,
+    seconds: f64,
 }
 
 impl Driver<'_> {
@@ -135,6 +152,7 @@ impl Driver<'_> {
     ) -> std::result::Result<Assembled, Failure> {
         let StepFrame { pattern, elems, fext, t1, dt } = sc;
         let (t1, dt) = (*t1, *dt);
+        let started = std::time::Instant::now();
         let mut asm = Assembler::new(map, pattern.clone());
         let mut fint = vec![0.0; u.len()];
         let mut states = Vec::with_capacity(prev.len());
@@ -157,7 +175,7 @@ impl Driver<'_> {
         let all: Vec<usize> = (0..u.len()).collect();
         asm.add_vector(&all, &r);
         let (k, rhs) = asm.finish();
-        Ok(Assembled { k, rhs, fint, states })
+        Ok(Assembled { k, rhs, fint, states, seconds: started.elapsed().as_secs_f64() })
     }
 
     /// Code_Aster's relative and absolute residuals of a state: the free equations' residual over the
@@ -172,20 +190,60 @@ impl Driver<'_> {
         (if scale > 0.0 { abs / scale } else { abs }, abs)
     }
 
+    /// Solve the reduced system. The pressure rows are first divided by the liquid's density ρ₀: with the
+    /// coupling terms at the same points (every variant but `*_HMS`) the tangent is then symmetric —
+    /// indefinite, its pressure block negative — up to the derivatives of the density and the porosity
+    /// (∂M/∂ε_v = ρ (b + (b − φ) ε_v)); within the driver's tolerance the solver takes LDLᵀ with its
+    /// fill-reducing ordering on both cores, refined against the matrix itself, and LU otherwise. The
+    /// scaling changes neither the solution nor the residual Newton tests.
     fn factor_solve(
         &self,
         map: &DofMap,
         k: &faer::sparse::SparseColMat<usize, f64>,
         rhs: &[f64],
         t1: f64,
+        log: &mut StepLog,
     ) -> std::result::Result<Vec<f64>, Failure> {
         let p = self.p;
-        let sol = solve::solve(k.as_ref(), rhs, &self.opts).map_err(|e| {
+        let (k, rhs) = if self.pressure_row_scale > 0.0 {
+            let row: Vec<f64> = map
+                .free_to_full
+                .iter()
+                .map(|&d| if p.numbering.node_comp(d).1 == p.pre1 { self.pressure_row_scale } else { 1.0 })
+                .collect();
+            let (cp, ri) = (k.symbolic().col_ptr(), k.symbolic().row_idx());
+            let mut vals = k.val().to_vec();
+            for j in 0..k.ncols() {
+                for q in cp[j]..cp[j + 1] {
+                    vals[q] *= row[ri[q]];
+                }
+            }
+            let b: Vec<f64> = rhs.iter().zip(&row).map(|(v, s)| v * s).collect();
+            (faer::sparse::SparseColMat::new(k.symbolic().to_owned().expect("a valid pattern"), vals), b)
+        } else {
+            (k.clone(), rhs.to_vec())
+        };
+        // The condition number is estimated on the first factorization only: it costs about ten solves,
+        // as much as the factorization itself on large 2D systems, and the steps that follow change the
+        // tangent little (NPREC still checks every factorization's pivots).
+        let opts = SolverOptions { condition: self.opts.condition && log.factorizations == 0, ..self.opts };
+        let sol = solve::solve_with(k.as_ref(), &rhs, &opts, &mut self.analysis.borrow_mut()).map_err(|e| {
             let msg = crate::stages::core::solver::solve_error(e, &self.opts, &|d| {
                 p.numbering.label(map.free_to_full[d], Some(&p.mesh))
             });
             Failure::Step(self.a.err("SOLVEUR", format!("the tangent matrix at INST={t1}: {msg}")))
         })?;
+        let (t, s) = (&mut log.solver, &sol.timings);
+        t.symbolic += s.symbolic;
+        t.factorization += s.factorization;
+        t.condition += s.condition;
+        t.solve += s.solve;
+        if log.factorizations == 0 {
+            log.condition = sol.info.condition;
+        }
+        log.factorizations += 1;
+        let info = solve::FactorInfo { condition: log.condition, ..sol.info };
+        log.last_solve = Some((info, sol.residual, sol.refinements));
         Ok(sol.x)
     }
 
@@ -219,12 +277,14 @@ impl Driver<'_> {
         let sc = StepFrame { pattern, elems, fext, t1, dt };
         // Prediction: tangent and internal forces of the start state.
         let pred = self.assemble(&sc, &map_pred, u, states)?;
-        let dx = self.factor_solve(&map_pred, &pred.k, &pred.rhs, t1)?;
+        log.assembly += pred.seconds;
+        let dx = self.factor_solve(&map_pred, &pred.k, &pred.rhs, t1, log)?;
         let mut unew: Vec<f64> = u.iter().zip(map_pred.expand(&dx)).map(|(a, b)| a + b).collect();
         let mut iters = 0;
         let mut history = Vec::new();
         loop {
             let now = self.assemble(&sc, &map, &unew, states)?;
+            log.assembly += now.seconds;
             let (rel, abs) = self.residual(&map, &free, &sc.fext, &now.fint);
             history.push(rel);
             let done = self.conv.resi_rela.map(|tol| rel <= tol).unwrap_or(true)
@@ -256,7 +316,7 @@ impl Driver<'_> {
                     ),
                 )));
             }
-            let dx = self.factor_solve(&map, &now.k, &now.rhs, t1)?;
+            let dx = self.factor_solve(&map, &now.k, &now.rhs, t1, log)?;
             for (ui, di) in unew.iter_mut().zip(map.expand(&dx)) {
                 *ui += di;
             }
