@@ -4,7 +4,7 @@
 
 use aster::mesh::Mesh;
 use aster::xfem::{build_interface, Crack};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 use std::rc::Rc;
 
@@ -104,4 +104,30 @@ impl Rng {
             (self.next() % n as u64) as usize
         }
     }
+}
+
+/// Run cases of Code_Aster's 2025 corpus (`../shared/corpus/astest-2025`, read in place) unmodified: each
+/// must end OK with exactly its number of OK check lines. Skips with a message where the corpus is absent.
+pub fn run_corpus_cases(out: &Path, cases: &[(&str, usize)]) {
+    let dir = root().join("../shared/corpus/astest-2025");
+    if !dir.is_dir() {
+        println!("SKIP: {} is absent", dir.display());
+        return;
+    }
+    let mut failures = Vec::new();
+    for &(case, ok) in cases {
+        let opts = aster::runner::RunOptions { out_dir: Some(out.join(case)), units: vec![], echo: false };
+        let o = aster::runner::run_export(&dir.join(format!("{case}.export")), &opts);
+        println!("{case:<10} {:<16} {} OK", o.diagnostic, o.ok_count());
+        if o.diagnostic != "OK" || o.ok_count() != ok {
+            failures.push(format!(
+                "{case}: {} with {} OK lines (want {ok}): {:?}",
+                o.diagnostic,
+                o.ok_count(),
+                o.error
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+    let _ = std::fs::remove_dir_all(out);
 }
