@@ -7,7 +7,7 @@
 //! base 10 behind MX; the nodes on a crack form the group PREF_GROUP_CO.
 
 use crate::mesh::{CellType, Mesh};
-use crate::xfem::topose::Cutting;
+use crate::xfem::topose::{Cutting, PointId};
 use std::collections::{BTreeMap, HashMap};
 use std::ops::Range;
 
@@ -44,9 +44,8 @@ pub enum NodeOrigin {
     Xfem {
         /// The parent cell (index in the original mesh).
         parent: usize,
-        /// The point's TOPOSE id (1..=nno parent node, 1000+ intersection,
-        /// 2000+ mid-point, 3000+ centre node).
-        id: u32,
+        /// The point of the parent's cutting.
+        id: PointId,
         /// Reference coordinates in the parent.
         xi: [f64; 3],
         he: Vec<i32>,
@@ -65,8 +64,8 @@ pub enum NodeOrigin {
     Boundary {
         /// The boundary parent (index in the original mesh).
         parent: usize,
-        /// The point's TOPOSE id in the boundary parent.
-        id: u32,
+        /// The point of the boundary parent's cutting.
+        id: PointId,
         /// Reference coordinates in the boundary parent.
         xi: [f64; 3],
         /// Heaviside values of the boundary sub-cell (one per crack of the
@@ -123,13 +122,11 @@ const CRILSN: f64 = 1e-4;
 
 /// Prefix of a new node (`xpoajn`): on a crack or not, and on which side of
 /// the nearest crack active on the sub-cell. Returns (prefix, on a crack).
-fn node_prefix<'a>(id: u32, lsn: &[f64], he: &[i32], p: &'a Prefixes) -> (&'a str, bool) {
-    let on = if id < 1000 {
-        lsn.contains(&0.0)
-    } else if id < 2000 {
-        true
-    } else {
-        lsn.iter().any(|v| v.abs() < CRILSN)
+fn node_prefix<'a>(id: PointId, lsn: &[f64], he: &[i32], p: &'a Prefixes) -> (&'a str, bool) {
+    let on = match id {
+        PointId::Node(_) => lsn.contains(&0.0),
+        PointId::Intersection(_) => true,
+        PointId::Mid(_) | PointId::Centre(_) => lsn.iter().any(|v| v.abs() < CRILSN),
     };
     if !on {
         return (&p.node_x, false);
@@ -288,13 +285,12 @@ pub fn visual_mesh(
                 let (prefix, lpint) = node_prefix(p.id, &p.lsn, &s.he, prefixes);
                 inntot += 1;
                 let n = out.coords.len();
-                let x = if (p.id as usize) >= 1 && p.id < 1000 {
-                    let old = *mesh.cells[parent]
-                        .get(p.id as usize - 1)
-                        .ok_or("POST_MAIL_XFEM: parent node id out of range")?;
-                    mesh.coords[old]
-                } else {
-                    p.x
+                let x = match p.id.node() {
+                    Some(k) => {
+                        let old = *mesh.cells[parent].get(k).ok_or("POST_MAIL_XFEM: parent node id out of range")?;
+                        mesh.coords[old]
+                    }
+                    None => p.x,
                 };
                 out.coords.push(x);
                 out.node_names.push(format!("{prefix}{}", base36(inntot)));

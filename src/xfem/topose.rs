@@ -6,11 +6,13 @@
 //! Heaviside sign of every child. The split, the order and the numbering are
 //! Code_Aster's, because POST_MAIL_XFEM's node names depend on them.
 //!
-//! Point ids follow Code_Aster's final connectivity (`PCNSETO`):
-//! 1..=nno the parent's nodes (Code_Aster local order), 1000+k intersection
-//! points, 2000+k mid-points, 3000+k centre nodes still in use (as in
+//! Points are [`PointId`]s, Code_Aster's final connectivity (`PCNSETO`):
+//! the parent's nodes (1..=nno, Code_Aster local order), intersection points
+//! (1000+k), mid-points (2000+k) and centre nodes still in use (3000+k; as in
 //! `te0514`, k continues the mid-point count: the first centre node in use
-//! of a parent with 13 mid-points is 3014).
+//! of a parent with 13 mid-points is 3014). While a parent is cut, the
+//! points of the current sub-simplex and the centre nodes have working
+//! numbers of their own ([`Wp`]).
 //!
 //! Only what straight interfaces in affine cells need is reproduced: every
 //! Newton solve of Code_Aster (xinter, xmifis, xcenfi) starts on the
@@ -33,11 +35,76 @@ pub struct CrackInCell {
     pub master: Option<(usize, f64)>,
 }
 
+/// What a point of a cutting is, numbered as Code_Aster numbers it in its
+/// final connectivity (`PCNSETO`): POST_MAIL_XFEM's node names follow the
+/// order of these points, and [`PointId::number`] gives Code_Aster's number.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum PointId {
+    /// A node of the parent: its 1-based local number (1..=nno).
+    Node(u8),
+    /// The k-th intersection point of the parent, 1-based (1000 + k).
+    Intersection(u16),
+    /// The k-th mid-point of the parent, 1-based (2000 + k).
+    Mid(u16),
+    /// A centre node of the primary split still in use (`ndcent`), numbered
+    /// after the mid-points: 3000 + k.
+    Centre(u16),
+}
+
+impl PointId {
+    /// Code_Aster's number of the point (1..=nno, 1000+k, 2000+k, 3000+k).
+    pub fn number(self) -> u32 {
+        match self {
+            PointId::Node(j) => u32::from(j),
+            PointId::Intersection(k) => 1000 + u32::from(k),
+            PointId::Mid(k) => 2000 + u32::from(k),
+            PointId::Centre(k) => 3000 + u32::from(k),
+        }
+    }
+
+    /// The parent node, 0-based, if the point is one.
+    pub fn node(self) -> Option<usize> {
+        match self {
+            PointId::Node(j) => Some(usize::from(j) - 1),
+            _ => None,
+        }
+    }
+}
+
+impl std::fmt::Display for PointId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.number())
+    }
+}
+
+/// A point while a parent is being cut, with Code_Aster's working numbers
+/// (`te0514`, `xdecqu`, `xdecqv`): the parent's nodes, the centre nodes of
+/// the primary split (nno+k), the intersection points and mid-points of the
+/// current sub-simplex (100+k, 200+k), and those archived for the parent
+/// (1000+k, 2000+k). Every index is 1-based, as in Code_Aster.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Wp {
+    /// A node of the parent (1..=nno).
+    Node(u8),
+    /// A centre node of the primary split (`ndcent`, nno + k).
+    Centre(u8),
+    /// An intersection point of the current sub-simplex (100 + k).
+    Inter(u8),
+    /// A mid-point of the current sub-simplex (200 + k).
+    LocalMid(u8),
+    /// An intersection point archived for the parent (1000 + k).
+    PInt(u16),
+    /// A mid-point archived for the parent (2000 + k).
+    PMil(u16),
+}
+
+use Wp::{Centre as C, Inter as I, LocalMid as M, Node as N};
+
 /// A point of the cutting.
 #[derive(Debug, Clone)]
 pub struct CutPoint {
-    /// Code_Aster's id (see the module docs).
-    pub id: u32,
+    /// What the point is (see the module docs).
+    pub id: PointId,
     /// Reference coordinates in the parent cell.
     pub xi: [f64; 3],
     /// Real coordinates.
@@ -88,18 +155,18 @@ const TETRA10_EDGES: [[usize; 3]; 6] = [[1, 2, 5], [1, 3, 7], [1, 4, 8], [2, 3, 
 
 /// Primary split of a QUAD8 (`xdivte`, first configuration): node 9 is the
 /// centre.
-const QUAD8_SPLIT: [[u32; 6]; 2] = [[1, 2, 4, 5, 9, 8], [2, 3, 4, 6, 7, 9]];
+const QUAD8_SPLIT: [[Wp; 6]; 2] = [[N(1), N(2), N(4), N(5), C(1), N(8)], [N(2), N(3), N(4), N(6), N(7), C(1)]];
 
 /// Primary split of a HEXA20 into six TETRA10 (`xdivte`, first
 /// configuration); 21..26 are the face centres (z−, y−, x+, y+, x−, z+) and
 /// 27 the body centre.
-const HEXA20_SPLIT: [[u32; 10]; 6] = [
-    [6, 3, 2, 4, 23, 10, 14, 27, 11, 21],
-    [4, 5, 1, 2, 25, 13, 12, 21, 22, 9],
-    [2, 5, 6, 4, 22, 17, 14, 21, 25, 27],
-    [5, 4, 8, 6, 25, 16, 20, 17, 27, 26],
-    [3, 6, 7, 8, 23, 18, 15, 24, 26, 19],
-    [3, 8, 4, 6, 24, 16, 11, 23, 26, 27],
+const HEXA20_SPLIT: [[Wp; 10]; 6] = [
+    [N(6), N(3), N(2), N(4), C(3), N(10), N(14), C(7), N(11), C(1)],
+    [N(4), N(5), N(1), N(2), C(5), N(13), N(12), C(1), C(2), N(9)],
+    [N(2), N(5), N(6), N(4), C(2), N(17), N(14), C(1), C(5), C(7)],
+    [N(5), N(4), N(8), N(6), C(5), N(16), N(20), N(17), C(7), C(6)],
+    [N(3), N(6), N(7), N(8), C(3), N(18), N(15), C(4), C(6), N(19)],
+    [N(3), N(8), N(4), N(6), C(4), N(16), N(11), C(3), C(6), C(7)],
 ];
 
 /// A point: reference coordinates in the parent and real coordinates.
@@ -115,8 +182,8 @@ pub(super) struct Inter {
     pub(super) p: Pt,
     /// 1-based local edge, 0 when the point is a vertex of the sub-simplex.
     pub(super) edge: usize,
-    /// Id of the vertex when `edge == 0`.
-    pub(super) node: u32,
+    /// The vertex, when `edge == 0`.
+    pub(super) node: Option<Wp>,
 }
 
 pub(super) type V3 = Vector3<f64>;
@@ -164,45 +231,31 @@ impl Ctx<'_> {
         Pt { xi, x: map_to_real(self.t, self.coords, &xi) }
     }
 
-    fn is_centre(&self, id: u32) -> bool {
-        (id as usize) > self.nno && id < 100
-    }
-
     /// A point known to the parent (node, centre node, archived intersection
-    /// or mid-point) or to the current sub-simplex (101.., 201..).
-    fn pt(&self, id: u32, inter: &[Inter], mil: &[Pt]) -> Result<Pt, String> {
-        let i = id as usize;
-        let p = if id == 0 {
-            None
-        } else if i <= self.nno {
-            Some(Pt { xi: node_coords(self.t)[i - 1], x: self.coords[i - 1] })
-        } else if id < 100 {
-            self.centre.get(i - self.nno - 1).copied()
-        } else if id < 200 {
-            inter.get(i - 101).map(|p| p.p)
-        } else if id < 1000 {
-            mil.get(i - 201).copied()
-        } else if id < 2000 {
-            self.pint.get(i - 1001).copied()
-        } else if id < 3000 {
-            self.pmil.get(i - 2001).copied()
-        } else {
-            None
+    /// or mid-point) or to the current sub-simplex.
+    fn pt(&self, id: Wp, inter: &[Inter], mil: &[Pt]) -> Result<Pt, String> {
+        let at = |k: usize| k.checked_sub(1);
+        let p = match id {
+            Wp::Node(j) => {
+                at(j.into()).filter(|&k| k < self.nno).map(|k| Pt { xi: node_coords(self.t)[k], x: self.coords[k] })
+            }
+            Wp::Centre(j) => at(j.into()).and_then(|k| self.centre.get(k).copied()),
+            Wp::Inter(j) => at(j.into()).and_then(|k| inter.get(k).map(|p| p.p)),
+            Wp::LocalMid(j) => at(j.into()).and_then(|k| mil.get(k).copied()),
+            Wp::PInt(j) => at(j.into()).and_then(|k| self.pint.get(k).copied()),
+            Wp::PMil(j) => at(j.into()).and_then(|k| self.pmil.get(k).copied()),
         };
-        p.ok_or_else(|| format!("TOPOSE: internal error, point id {id} is unknown"))
+        p.ok_or_else(|| format!("TOPOSE: internal error, point {id:?} is unknown"))
     }
 
     /// Level set of a node of a sub-simplex as `xdecqu` reads it: nodal value
     /// at parent nodes, the centre value at centre nodes, the parent
     /// interpolation at generated points.
-    fn node_lsn(&self, id: u32, crack: usize, inter: &[Inter], mil: &[Pt]) -> Result<f64, String> {
-        let i = id as usize;
-        Ok(if i <= self.nno {
-            self.lsn[crack][i - 1]
-        } else if self.is_centre(id) {
-            self.centre_lsn[i - self.nno - 1][crack]
-        } else {
-            self.interp(&self.pt(id, inter, mil)?.xi, crack)
+    fn node_lsn(&self, id: Wp, crack: usize, inter: &[Inter], mil: &[Pt]) -> Result<f64, String> {
+        Ok(match id {
+            Wp::Node(j) if usize::from(j) <= self.nno && j > 0 => self.lsn[crack][usize::from(j) - 1],
+            Wp::Centre(j) if j > 0 => self.centre_lsn[usize::from(j) - 1][crack],
+            _ => self.interp(&self.pt(id, inter, mil)?.xi, crack),
         })
     }
 }
@@ -262,7 +315,7 @@ fn add_mid(list: &mut Vec<Pt>, p: Pt, lonref: f64) {
 impl Ctx<'_> {
     /// Intersection points and mid-points of sub-simplex `sub` with crack
     /// `ifiss` (`xdecqu`, then `xalgo2` / `xalg30` / `xalg40`).
-    fn decqu(&self, sub: &[u32], ifiss: usize, fisc: &[(usize, f64)]) -> Result<Decoupe, String> {
+    fn decqu(&self, sub: &[Wp], ifiss: usize, fisc: &[(usize, f64)]) -> Result<Decoupe, String> {
         let nnose = sub.len();
         let edges: &[[usize; 3]] = if self.dim == 2 { &TRIA6_EDGES } else { &TETRA10_EDGES };
         let none = Decoupe { cut: false, inter: Vec::new(), npts: 0, mil: Vec::new() };
@@ -303,21 +356,21 @@ impl Ctx<'_> {
             let a = self.pt(na, &[], &[])?;
             let b = self.pt(nb, &[], &[])?;
             let longar = dist(&a.x, &b.x);
-            if la == 0.0 && add_inter(&mut inter, Inter { p: a, edge: 0, node: na }, longar) {
+            if la == 0.0 && add_inter(&mut inter, Inter { p: a, edge: 0, node: Some(na) }, longar) {
                 npts += 1;
             }
-            if lb == 0.0 && add_inter(&mut inter, Inter { p: b, edge: 0, node: nb }, longar) {
+            if lb == 0.0 && add_inter(&mut inter, Inter { p: b, edge: 0, node: Some(nb) }, longar) {
                 npts += 1;
             }
             if lm == 0.0 {
                 let m = self.pt(nm, &[], &[])?;
-                if add_inter(&mut inter, Inter { p: m, edge: ie + 1, node: 0 }, longar) {
+                if add_inter(&mut inter, Inter { p: m, edge: ie + 1, node: None }, longar) {
                     nptm += 1;
                 }
             }
             if la != 0.0 && lb != 0.0 && lm != 0.0 {
                 let c = self.xinter(na, nb, nm, la, lb, lm, ifiss)?;
-                add_inter(&mut inter, Inter { p: c, edge: ie + 1, node: 0 }, longar);
+                add_inter(&mut inter, Inter { p: c, edge: ie + 1, node: None }, longar);
             }
         }
         // Selection sort by edge number.
@@ -392,7 +445,7 @@ impl Ctx<'_> {
     /// a linear field, when `xajuls` snapped a value to zero or `xmilfa` moved
     /// a mid-node of a flat sub-triangle.
     #[allow(clippy::too_many_arguments)]
-    fn xinter(&self, na: u32, nb: u32, nm: u32, la: f64, lb: f64, lm: f64, ifiss: usize) -> Result<Pt, String> {
+    fn xinter(&self, na: Wp, nb: Wp, nm: Wp, la: f64, lb: f64, lm: f64, ifiss: usize) -> Result<Pt, String> {
         let pa = self.pt(na, &[], &[])?.xi;
         let pb = self.pt(nb, &[], &[])?.xi;
         let pm = self.pt(nm, &[], &[])?.xi;
@@ -499,11 +552,13 @@ impl Ctx<'_> {
 
     /// Type-1 mid-points of intersection point `r` (`xmilar`): between the
     /// point and end `ia`, then between the point and end `ib`.
-    fn milar(&self, ia: u32, ib: u32, im: u32, pr: &[f64; 3]) -> Result<(Pt, Pt), String> {
+    fn milar(&self, ia: Wp, ib: Wp, im: Wp, pr: &[f64; 3]) -> Result<(Pt, Pt), String> {
         let pta = self.pt(ia, &[], &[])?.xi;
         let ptb = self.pt(ib, &[], &[])?.xi;
         let ptm = self.pt(im, &[], &[])?.xi;
-        let (ka, kb) = if im < 2000 {
+        // A mid-node of the parent (or a centre node): straight halves; an
+        // archived mid-point: along the quadratic sub-edge.
+        let (ka, kb) = if !matches!(im, Wp::PMil(_)) {
             (mid(pr, &pta), mid(pr, &ptb))
         } else {
             let ab = V3::from(ptb) - V3::from(pta);
@@ -539,15 +594,7 @@ impl Ctx<'_> {
     /// Type-3 mid-point (`xmilfa`): between point `ip1` and the far end of
     /// point `ip2`'s edge; `pm2` is the 1-based index of their type-2
     /// mid-point in `mil`.
-    fn milfa(
-        &self,
-        sub: &[u32],
-        inter: &[Inter],
-        ip1: usize,
-        ip2: usize,
-        pm2: usize,
-        mil: &[Pt],
-    ) -> Result<Pt, String> {
+    fn milfa(&self, sub: &[Wp], inter: &[Inter], ip1: usize, ip2: usize, pm2: usize, mil: &[Pt]) -> Result<Pt, String> {
         let edges: &[[usize; 3]] = if self.dim == 2 { &TRIA6_EDGES } else { &TETRA10_EDGES };
         let a1 = inter[ip1 - 1].edge;
         let a2 = inter[ip2 - 1].edge;
@@ -599,7 +646,7 @@ impl Ctx<'_> {
     }
 
     /// 2D mid-points (`xalgo2`).
-    fn algo2(&self, sub: &[u32], inter: &[Inter], npts: usize, lonref: f64, ifiss: usize) -> Result<Vec<Pt>, String> {
+    fn algo2(&self, sub: &[Wp], inter: &[Inter], npts: usize, lonref: f64, ifiss: usize) -> Result<Vec<Pt>, String> {
         let ed = &TRIA6_EDGES;
         let n = inter.len();
         let shared = |a1: usize, a2: usize| -> usize {
@@ -651,7 +698,7 @@ impl Ctx<'_> {
     /// second) as 1-based local nodes.
     fn type1(
         &self,
-        sub: &[u32],
+        sub: &[Wp],
         inter: &[Inter],
         ed: &[[usize; 3]],
         mil: &mut Vec<Pt>,
@@ -672,7 +719,7 @@ impl Ctx<'_> {
     }
 
     /// 3D mid-points, three intersection points (`xalg30`).
-    fn alg30(&self, sub: &[u32], inter: &[Inter], lonref: f64, ifiss: usize) -> Result<Vec<Pt>, String> {
+    fn alg30(&self, sub: &[Wp], inter: &[Inter], lonref: f64, ifiss: usize) -> Result<Vec<Pt>, String> {
         let ed = &TETRA10_EDGES;
         let (a2, a3) = (inter[1].edge, inter[2].edge);
         let mut noeua = 0;
@@ -704,7 +751,7 @@ impl Ctx<'_> {
     }
 
     /// 3D mid-points, four intersection points (`xalg40`).
-    fn alg40(&self, sub: &[u32], inter: &[Inter], lonref: f64, ifiss: usize) -> Result<Vec<Pt>, String> {
+    fn alg40(&self, sub: &[Wp], inter: &[Inter], lonref: f64, ifiss: usize) -> Result<Vec<Pt>, String> {
         let ed = &TETRA10_EDGES;
         let (a1, a2) = (inter[0].edge, inter[1].edge);
         let (mut nb, mut nc) = (0, 0);
@@ -759,7 +806,7 @@ impl Ctx<'_> {
 
 /// Split a quadratic prism (18 nodes: 6 vertices, 9 edge mid-nodes, 3
 /// face mid-nodes) into three TETRA10 (`xpente`, default pattern).
-fn xpente(n: &[u32; 18]) -> [[u32; 10]; 3] {
+fn xpente(n: &[Wp; 18]) -> [[Wp; 10]; 3] {
     let g = |k: usize| n[k - 1];
     [
         [g(1), g(5), g(2), g(6), g(16), g(11), g(7), g(18), g(14), g(17)],
@@ -769,15 +816,15 @@ fn xpente(n: &[u32; 18]) -> [[u32; 10]; 3] {
 }
 
 impl Ctx<'_> {
-    /// Children of a sub-simplex (`xdecqv`): connectivities with the local
-    /// ids 101.. (intersections) and 201.. (mid-points).
-    fn decqv(&self, sub: &[u32], d: &Decoupe) -> Result<Vec<Vec<u32>>, String> {
+    /// Children of a sub-simplex (`xdecqv`): connectivities with the points
+    /// of the sub-simplex ([`Wp::Inter`], [`Wp::LocalMid`]).
+    fn decqv(&self, sub: &[Wp], d: &Decoupe) -> Result<Vec<Vec<Wp>>, String> {
         if !d.cut {
             return Ok(vec![sub.to_vec()]);
         }
         let n = d.inter.len();
         let s = |k: usize| sub[k - 1];
-        let mut out: Vec<Vec<u32>> = Vec::new();
+        let mut out: Vec<Vec<Wp>> = Vec::new();
         if self.dim == 2 {
             let ed = &TRIA6_EDGES;
             // a: vertex shared by the edges of points i and j; b, c: their other ends; e: mid-node of the third edge.
@@ -795,12 +842,12 @@ impl Ctx<'_> {
             match (n, d.npts) {
                 (2, 0) => {
                     let [a, b, c, e] = abce(d.inter[0].edge, d.inter[1].edge).ok_or("TOPOSE: xdecqv: bad edges")?;
-                    out.push(vec![101, 102, s(a), 205, 204, 202]);
-                    out.push(vec![101, 102, s(c), 205, 203, 206]);
-                    out.push(vec![101, s(b), s(c), 201, s(e), 206]);
+                    out.push(vec![I(1), I(2), s(a), M(5), M(4), M(2)]);
+                    out.push(vec![I(1), I(2), s(c), M(5), M(3), M(6)]);
+                    out.push(vec![I(1), s(b), s(c), M(1), s(e), M(6)]);
                 }
                 (2, 1) => {
-                    let ip1 = d.inter[0].node;
+                    let ip1 = d.inter[0].node.ok_or("TOPOSE: xdecqv: the first point is not a vertex")?;
                     let a2 = d.inter[1].edge;
                     let (b, c) = (ed[a2 - 1][0], ed[a2 - 1][1]);
                     let (mut e, mut f) = (0, 0);
@@ -817,14 +864,14 @@ impl Ctx<'_> {
                     if e * f == 0 {
                         return Err("TOPOSE: xdecqv: vertex point not found on the sub-element".into());
                     }
-                    out.push(vec![ip1, 102, s(b), 203, 202, s(e)]);
-                    out.push(vec![ip1, 102, s(c), 203, 201, s(f)]);
+                    out.push(vec![ip1, I(2), s(b), M(3), M(2), s(e)]);
+                    out.push(vec![ip1, I(2), s(c), M(3), M(1), s(f)]);
                 }
                 (3, 1) => {
                     let [a, b, c, e] = abce(d.inter[1].edge, d.inter[2].edge).ok_or("TOPOSE: xdecqv: bad edges")?;
-                    out.push(vec![102, 103, s(a), 205, 204, 202]);
-                    out.push(vec![102, 103, s(c), 205, 203, 206]);
-                    out.push(vec![102, s(b), s(c), 201, s(e), 206]);
+                    out.push(vec![I(2), I(3), s(a), M(5), M(4), M(2)]);
+                    out.push(vec![I(2), I(3), s(c), M(5), M(3), M(6)]);
+                    out.push(vec![I(2), s(b), s(c), M(1), s(e), M(6)]);
                 }
                 _ => out.push(sub.to_vec()),
             }
@@ -852,26 +899,26 @@ impl Ctx<'_> {
                     if a * b * c * dd * e * f * g == 0 {
                         return Err("TOPOSE: xdecqv: inconsistent 3-point cutting".into());
                     }
-                    out.push(vec![101, 102, 103, s(a), 207, 208, 209, 202, 204, 206]);
+                    out.push(vec![I(1), I(2), I(3), s(a), M(7), M(8), M(9), M(2), M(4), M(6)]);
                     let pr = [
-                        101,
-                        102,
-                        103,
+                        I(1),
+                        I(2),
+                        I(3),
                         s(b),
                         s(c),
                         s(dd),
-                        207,
-                        208,
-                        209,
-                        201,
-                        203,
-                        205,
+                        M(7),
+                        M(8),
+                        M(9),
+                        M(1),
+                        M(3),
+                        M(5),
                         s(e),
                         s(f),
                         s(g),
-                        210,
-                        211,
-                        212,
+                        M(10),
+                        M(11),
+                        M(12),
                     ];
                     out.extend(xpente(&pr).iter().map(|t| t.to_vec()));
                 }
@@ -889,10 +936,46 @@ impl Ctx<'_> {
                     if a * b * c * dd * e * f == 0 {
                         return Err("TOPOSE: xdecqv: inconsistent 4-point cutting".into());
                     }
-                    let p1 =
-                        [104, 102, s(c), 103, 101, s(b), 210, 203, 207, 211, 209, s(e), 212, 201, 205, 213, 214, 216];
-                    let p2 =
-                        [s(a), 101, 102, s(dd), 103, 104, 202, 209, 204, s(f), 212, 210, 206, 211, 208, 217, 213, 215];
+                    let p1 = [
+                        I(4),
+                        I(2),
+                        s(c),
+                        I(3),
+                        I(1),
+                        s(b),
+                        M(10),
+                        M(3),
+                        M(7),
+                        M(11),
+                        M(9),
+                        s(e),
+                        M(12),
+                        M(1),
+                        M(5),
+                        M(13),
+                        M(14),
+                        M(16),
+                    ];
+                    let p2 = [
+                        s(a),
+                        I(1),
+                        I(2),
+                        s(dd),
+                        I(3),
+                        I(4),
+                        M(2),
+                        M(9),
+                        M(4),
+                        s(f),
+                        M(12),
+                        M(10),
+                        M(6),
+                        M(11),
+                        M(8),
+                        M(17),
+                        M(13),
+                        M(15),
+                    ];
                     out.extend(xpente(&p1).iter().map(|t| t.to_vec()));
                     out.extend(xpente(&p2).iter().map(|t| t.to_vec()));
                 }
@@ -906,14 +989,14 @@ impl Ctx<'_> {
 
     /// Orientation of the TETRA10 children (`xdecqv`): a negative volume
     /// swaps vertices 3↔4 and mid-nodes 6↔9, 7↔8.
-    fn orient(&self, children: &mut [Vec<u32>], d: &Decoupe) -> Result<(), String> {
+    fn orient(&self, children: &mut [Vec<Wp>], d: &Decoupe) -> Result<(), String> {
         if self.dim != 3 {
             return Ok(());
         }
         for ch in children.iter_mut() {
             let mut v = [V3::zeros(); 4];
             for (k, vk) in v.iter_mut().enumerate() {
-                if self.is_centre(ch[k]) {
+                if matches!(ch[k], Wp::Centre(_)) {
                     return Err("TOPOSE: a centre node is a vertex of a sub-tetrahedron".into());
                 }
                 *vk = V3::from(self.pt(ch[k], &d.inter, &d.mil)?.x);
@@ -933,7 +1016,7 @@ impl Ctx<'_> {
     /// of its level set over the nodes (generated points at vertices only).
     fn heaviside(
         &self,
-        children: &[Vec<u32>],
+        children: &[Vec<Wp>],
         d: &Decoupe,
         parent_he: &[i32],
         ifiss: usize,
@@ -952,7 +1035,7 @@ impl Ctx<'_> {
                 for (b, x) in bary.iter_mut().zip(&p.x) {
                     *b += x / nnose;
                 }
-                let generated = id as usize > self.nno && !self.is_centre(id);
+                let generated = !matches!(id, Wp::Node(_) | Wp::Centre(_));
                 if generated && pos > self.dim {
                     continue;
                 }
@@ -1054,7 +1137,7 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
         ctx.centre.push(p);
         ctx.centre_lsn.push(l);
     }
-    let mut subs: Vec<Vec<u32>> = if dim == 2 {
+    let mut subs: Vec<Vec<Wp>> = if dim == 2 {
         QUAD8_SPLIT.iter().map(|s| s.to_vec()).collect()
     } else {
         HEXA20_SPLIT.iter().map(|s| s.to_vec()).collect()
@@ -1095,15 +1178,15 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
                 let e = if dim == 2 { TRIA6_EDGES[p.edge - 1] } else { TETRA10_EDGES[p.edge - 1] };
                 let (na, nb) = (subs[it][e[0] - 1], subs[it][e[1] - 1]);
                 for f in 0..ifiss {
-                    let on = |id: u32| ctx.node_lsn(id, f, &[], &[]).map(|v| v.abs() <= 1e-12 * ctx.lonref);
+                    let on = |id: Wp| ctx.node_lsn(id, f, &[], &[]).map(|v| v.abs() <= 1e-12 * ctx.lonref);
                     if on(na)? && on(nb)? && !on_crack.contains(&(ni, f)) {
                         on_crack.push((ni, f));
                     }
                 }
                 for ch in children.iter_mut() {
                     for v in ch.iter_mut().take(dim + 1) {
-                        if *v == 101 + ipt as u32 {
-                            *v = 1001 + ni as u32;
+                        if *v == Wp::Inter(ipt as u8 + 1) {
+                            *v = Wp::PInt(ni as u16 + 1);
                         }
                     }
                 }
@@ -1124,14 +1207,14 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
                 };
                 for ch in children.iter_mut() {
                     for v in ch.iter_mut() {
-                        if *v == 201 + ipt as u32 {
-                            *v = 2001 + ni as u32;
+                        if *v == Wp::LocalMid(ipt as u8 + 1) {
+                            *v = Wp::PMil(ni as u16 + 1);
                         }
                     }
                 }
             }
             for (k, (ch, he)) in children.into_iter().zip(hes).enumerate() {
-                if ch.iter().any(|&v| (100..1000).contains(&v)) {
+                if ch.iter().any(|v| matches!(v, Wp::Inter(_) | Wp::LocalMid(_))) {
                     return Err("TOPOSE: internal error, a local point id was left in a sub-element".into());
                 }
                 let mut h = heav[it].clone();
@@ -1146,57 +1229,58 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
             }
         }
     }
-    // Centre nodes still in use become 3000+k, k following the mid-points.
-    let mut centre_ids: Vec<(u32, Pt)> = Vec::new();
-    for j in 0..ctx.centre.len() {
-        let old = (nno + j + 1) as u32;
-        if subs.iter().any(|s| s.contains(&old)) {
-            let id = 3001 + (ctx.pmil.len() + centre_ids.len()) as u32;
-            centre_ids.push((id, ctx.centre[j]));
-            for s in subs.iter_mut() {
-                for v in s.iter_mut() {
-                    if *v == old {
-                        *v = id;
-                    }
-                }
-            }
-        }
-    }
-    // Points: parent nodes, intersections, mid-points, centre nodes.
+    // Points: parent nodes, intersections, mid-points, then the centre nodes
+    // still in use, which become 3000+k, k following the mid-points.
     let ncr = cracks.len();
     let mut points: Vec<CutPoint> = Vec::new();
     let rnodes = node_coords(t);
     for j in 0..nno {
         points.push(CutPoint {
-            id: (j + 1) as u32,
+            id: PointId::Node(j as u8 + 1),
             xi: rnodes[j],
             x: coords[j],
             lsn: (0..ncr).map(|k| cracks[k].lsn[j]).collect(),
         });
     }
+    let centres: Vec<(u8, Pt)> = (0..ctx.centre.len())
+        .map(|j| (j as u8 + 1, ctx.centre[j]))
+        .filter(|(j, _)| subs.iter().any(|s| s.contains(&Wp::Centre(*j))))
+        .collect();
+    let nmil = ctx.pmil.len() as u16;
     let generated = ctx
         .pint
         .iter()
         .enumerate()
-        .map(|(k, p)| (1001 + k as u32, *p))
-        .chain(ctx.pmil.iter().enumerate().map(|(k, p)| (2001 + k as u32, *p)))
-        .chain(centre_ids.iter().copied());
+        .map(|(k, p)| (PointId::Intersection(k as u16 + 1), *p))
+        .chain(ctx.pmil.iter().enumerate().map(|(k, p)| (PointId::Mid(k as u16 + 1), *p)))
+        .chain(centres.iter().enumerate().map(|(k, (_, p))| (PointId::Centre(nmil + k as u16 + 1), *p)));
     for (id, p) in generated {
-        let on = |k: usize| id > 1000 && id < 2000 && on_crack.contains(&((id - 1001) as usize, k));
+        let on = |f: usize| match id {
+            PointId::Intersection(k) => on_crack.contains(&(usize::from(k) - 1, f)),
+            _ => false,
+        };
         let lsn = (0..ncr).map(|k| if on(k) { 0.0 } else { ctx.interp(&p.xi, k) }).collect();
         points.push(CutPoint { id, xi: p.xi, x: p.x, lsn });
     }
-    let index: std::collections::HashMap<u32, usize> = points.iter().enumerate().map(|(i, p)| (p.id, i)).collect();
+    // Index of a working point among the points.
+    let index = |v: Wp| -> Result<usize, String> {
+        let found = match v {
+            Wp::Node(j) if (1..=nno).contains(&usize::from(j)) => Some(usize::from(j) - 1),
+            Wp::PInt(k) if (1..=ctx.pint.len()).contains(&usize::from(k)) => Some(nno + usize::from(k) - 1),
+            Wp::PMil(k) if (1..=ctx.pmil.len()).contains(&usize::from(k)) => {
+                Some(nno + ctx.pint.len() + usize::from(k) - 1)
+            }
+            Wp::Centre(j) => {
+                centres.iter().position(|(c, _)| *c == j).map(|k| nno + ctx.pint.len() + ctx.pmil.len() + k)
+            }
+            _ => None,
+        };
+        found.ok_or_else(|| format!("TOPOSE: internal error, point {v:?} missing"))
+    };
     let subcells = subs
         .iter()
         .zip(heav)
-        .map(|(s, he)| {
-            let nodes = s
-                .iter()
-                .map(|v| index.get(v).copied().ok_or_else(|| format!("TOPOSE: internal error, point {v} missing")))
-                .collect::<Result<Vec<_>, _>>()?;
-            Ok(SubCell { nodes, he })
-        })
+        .map(|(s, he)| Ok(SubCell { nodes: s.iter().map(|&v| index(v)).collect::<Result<Vec<_>, String>>()?, he }))
         .collect::<Result<Vec<_>, String>>()?;
     Ok(Cutting { points, subcells })
 }
@@ -1240,7 +1324,7 @@ mod tests {
         let cut = topose(CellType::Quad8, &c, &[CrackInCell { lsn, master: None }]).unwrap();
         assert_eq!(cut.subcells.len(), 2);
         let ids: Vec<Vec<u32>> =
-            cut.subcells.iter().map(|s| s.nodes.iter().map(|&i| cut.points[i].id).collect()).collect();
+            cut.subcells.iter().map(|s| s.nodes.iter().map(|&i| cut.points[i].id.number()).collect()).collect();
         assert_eq!(ids, vec![vec![1, 2, 4, 5, 3001, 8], vec![2, 3, 4, 6, 7, 3001]]);
         assert!(cut.subcells.iter().all(|s| s.he == vec![1]));
         let total: f64 = cut.subcells.iter().map(|s| area(&cut, s)).sum();
@@ -1260,12 +1344,12 @@ mod tests {
         // Both primary triangles are cut in 3: 6 sub-elements.
         assert_eq!(cut.subcells.len(), 6);
         // Three distinct intersection points: on edge 4-1, on the diagonal, on edge 2-3.
-        let inter: Vec<&CutPoint> = cut.points.iter().filter(|p| (1001..2000).contains(&p.id)).collect();
+        let inter: Vec<&CutPoint> = cut.points.iter().filter(|p| matches!(p.id, PointId::Intersection(_))).collect();
         assert_eq!(inter.len(), 3);
         for p in &inter {
             assert!(p.lsn[0].abs() < 1e-14);
         }
-        assert_eq!(inter[0].id, 1001);
+        assert_eq!(inter[0].id, PointId::Intersection(1));
         // First triangle (1,2,4): the points are on its edges 2-4 (edge 2) and 4-1 (edge 3).
         assert!((inter[0].x[0] - 0.7 / 0.65).abs() < 1e-12 && (inter[0].x[1] - (1.0 - 0.35 / 0.65)).abs() < 1e-12);
         assert!((inter[1].x[0]).abs() < 1e-12 && (inter[1].x[1] - 0.3).abs() < 1e-12);
@@ -1278,12 +1362,12 @@ mod tests {
         }
         // First child replaces slot 1 (the child holding vertex 4, above the line).
         assert_eq!(cut.subcells[0].he, vec![1]);
-        let ids: Vec<u32> = cut.subcells[0].nodes.iter().map(|&i| cut.points[i].id).collect();
+        let ids: Vec<u32> = cut.subcells[0].nodes.iter().map(|&i| cut.points[i].id.number()).collect();
         assert_eq!(&ids[..3], &[1001, 1002, 4]);
         // The cut diagonal no longer uses the centre node.
-        assert!(cut.points.iter().all(|p| p.id < 3000));
+        assert!(cut.points.iter().all(|p| !matches!(p.id, PointId::Centre(_))));
         assert_eq!(
-            cut.points.iter().filter(|p| (2001..3000).contains(&p.id)).count(),
+            cut.points.iter().filter(|p| matches!(p.id, PointId::Mid(_))).count(),
             6 + 4,
             "the two halves of the diagonal are shared"
         );
@@ -1305,7 +1389,7 @@ mod tests {
             }
         }
         // Vertex 1 is used as it is, no intersection point is made there.
-        assert!(cut.points.iter().filter(|p| (1001..2000).contains(&p.id)).all(|p| p.x[0] > 0.5));
+        assert!(cut.points.iter().filter(|p| matches!(p.id, PointId::Intersection(_))).all(|p| p.x[0] > 0.5));
     }
 
     #[test]

@@ -22,7 +22,10 @@
 
 use crate::fem::reference::{map_to_real, node_coords, shape, shape_and_deriv};
 use crate::mesh::CellType;
-use crate::xfem::topose::{dist, loncar, master_chain, CrackInCell, CutPoint, Cutting, Inter, Pt, SubCell, V3};
+use crate::xfem::topose::Wp::{self, Inter as I, Node as N};
+use crate::xfem::topose::{
+    dist, loncar, master_chain, CrackInCell, CutPoint, Cutting, Inter, PointId, Pt, SubCell, V3,
+};
 
 /// Coincidence tolerance of the point lists (`cridist`), relative to the
 /// parent's characteristic length.
@@ -34,9 +37,16 @@ const TRIA3_EDGES: [[usize; 2]; 3] = [[1, 2], [2, 3], [3, 1]];
 const TETRA4_EDGES: [[usize; 2]; 6] = [[1, 2], [1, 3], [1, 4], [2, 3], [2, 4], [3, 4]];
 
 /// Primary splits (`xdivte`, linear parents).
-const QUAD4_SPLIT: [[u32; 3]; 2] = [[1, 2, 4], [2, 3, 4]];
-const HEXA8_SPLIT: [[u32; 4]; 6] = [[6, 3, 2, 4], [4, 5, 1, 2], [2, 5, 6, 4], [5, 4, 8, 6], [3, 6, 7, 8], [3, 8, 4, 6]];
-const PENTA6_SPLIT: [[u32; 4]; 3] = [[5, 4, 6, 1], [1, 2, 3, 6], [6, 2, 5, 1]];
+const QUAD4_SPLIT: [[Wp; 3]; 2] = [[N(1), N(2), N(4)], [N(2), N(3), N(4)]];
+const HEXA8_SPLIT: [[Wp; 4]; 6] = [
+    [N(6), N(3), N(2), N(4)],
+    [N(4), N(5), N(1), N(2)],
+    [N(2), N(5), N(6), N(4)],
+    [N(5), N(4), N(8), N(6)],
+    [N(3), N(6), N(7), N(8)],
+    [N(3), N(8), N(4), N(6)],
+];
+const PENTA6_SPLIT: [[Wp; 4]; 3] = [[N(5), N(4), N(6), N(1)], [N(1), N(2), N(3), N(6)], [N(6), N(2), N(5), N(1)]];
 
 /// The simplex type of the sub-cells of a linear parent of dimension `dim`
 /// (SEG2 for a boundary segment, TRIA3, TETRA4).
@@ -90,41 +100,37 @@ impl Ctx<'_> {
         shape(self.t, xi).iter().zip(self.lsn[crack]).map(|(n, v)| n * v).sum()
     }
 
-    /// A parent node, an archived intersection point (1001..) or a point of
-    /// the current simplex (101..).
-    fn pt(&self, id: u32, local: &[Inter]) -> Result<Pt, String> {
-        let i = id as usize;
-        let p = if id == 0 {
-            None
-        } else if i <= self.nno {
-            Some(Pt { xi: node_coords(self.t)[i - 1], x: self.coords[i - 1] })
-        } else if (101..1000).contains(&id) {
-            local.get(i - 101).map(|p| p.p)
-        } else if id > 1000 {
-            self.pint.get(i - 1001).copied()
-        } else {
-            None
+    /// A parent node, an archived intersection point or a point of the
+    /// current simplex.
+    fn pt(&self, id: Wp, local: &[Inter]) -> Result<Pt, String> {
+        let at = |k: usize| k.checked_sub(1);
+        let p = match id {
+            Wp::Node(j) => {
+                at(j.into()).filter(|&k| k < self.nno).map(|k| Pt { xi: node_coords(self.t)[k], x: self.coords[k] })
+            }
+            Wp::Inter(j) => at(j.into()).and_then(|k| local.get(k).map(|p| p.p)),
+            Wp::PInt(j) => at(j.into()).and_then(|k| self.pint.get(k).copied()),
+            _ => None,
         };
-        p.ok_or_else(|| format!("TOPOSE: internal error, point id {id} is unknown"))
+        p.ok_or_else(|| format!("TOPOSE: internal error, point {id:?} is unknown"))
     }
 
     /// Level set of a vertex as `xdecov` sums it (and `xdecou` for the
     /// junction test): nodal value at parent nodes, parent interpolation
     /// elsewhere.
-    fn vertex_lsn(&self, id: u32, crack: usize, local: &[Inter]) -> Result<f64, String> {
-        if (id as usize) <= self.nno && id > 0 {
-            Ok(self.lsn[crack][id as usize - 1])
-        } else {
-            Ok(self.interp(&self.pt(id, local)?.xi, crack))
+    fn vertex_lsn(&self, id: Wp, crack: usize, local: &[Inter]) -> Result<f64, String> {
+        match id {
+            Wp::Node(j) if j > 0 && usize::from(j) <= self.nno => Ok(self.lsn[crack][usize::from(j) - 1]),
+            _ => Ok(self.interp(&self.pt(id, local)?.xi, crack)),
         }
     }
 
     /// Level set of a vertex as `xdecou` reads it on an edge: the
     /// interpolated value at an intersection point is set to 0 below
     /// lonref·1e-4.
-    fn edge_lsn(&self, id: u32, crack: usize) -> Result<f64, String> {
+    fn edge_lsn(&self, id: Wp, crack: usize) -> Result<f64, String> {
         let v = self.vertex_lsn(id, crack, &[])?;
-        if id as usize > self.nno && v.abs() < self.lonref * 1e-4 {
+        if !matches!(id, Wp::Node(_)) && v.abs() < self.lonref * 1e-4 {
             Ok(0.0)
         } else {
             Ok(v)
@@ -136,7 +142,7 @@ impl Ctx<'_> {
     /// interpolation, from the linear estimate s = φa/(φa − φb), iterates
     /// kept in [0, 1] (`xnewto` / `xdelt0`); the start value is kept when
     /// it does not converge in 100 iterations.
-    fn xinter(&self, na: u32, nb: u32, la: f64, lb: f64, ifiss: usize) -> Result<Pt, String> {
+    fn xinter(&self, na: Wp, nb: Wp, la: f64, lb: f64, ifiss: usize) -> Result<Pt, String> {
         let pa = self.pt(na, &[])?.xi;
         let pb = self.pt(nb, &[])?.xi;
         if la - lb == 0.0 {
@@ -189,7 +195,7 @@ impl Ctx<'_> {
 
     /// Intersection points of simplex `sub` with crack `ifiss` (`xdecou`):
     /// the points and how many are vertices of the simplex.
-    fn decou(&self, sub: &[u32], ifiss: usize, fisc: &[(usize, f64)]) -> Result<(Vec<Inter>, usize), String> {
+    fn decou(&self, sub: &[Wp], ifiss: usize, fisc: &[(usize, f64)]) -> Result<(Vec<Inter>, usize), String> {
         // Junction: the branch does not exist on this side of its masters.
         for &(m, c) in fisc {
             let mut som = 0.0;
@@ -234,15 +240,15 @@ impl Ctx<'_> {
             if la * lb > 0.0 {
                 continue;
             }
-            if la == 0.0 && add(&mut inter, Inter { p: a, edge: 0, node: na })? {
+            if la == 0.0 && add(&mut inter, Inter { p: a, edge: 0, node: Some(na) })? {
                 npts += 1;
             }
-            if lb == 0.0 && add(&mut inter, Inter { p: b, edge: 0, node: nb })? {
+            if lb == 0.0 && add(&mut inter, Inter { p: b, edge: 0, node: Some(nb) })? {
                 npts += 1;
             }
             if la != 0.0 && lb != 0.0 {
                 let c = self.xinter(na, nb, la, lb, ifiss)?;
-                add(&mut inter, Inter { p: c, edge: ia + 1, node: 0 })?;
+                add(&mut inter, Inter { p: c, edge: ia + 1, node: None })?;
             }
         }
         // Selection sort by edge number (vertices first).
@@ -274,7 +280,7 @@ impl Ctx<'_> {
 
 /// First four nodes of the three tetrahedra of a prism (`xpente`, default
 /// pattern, linear part).
-fn xpente(n: &[u32; 6]) -> [[u32; 4]; 3] {
+fn xpente(n: &[Wp; 6]) -> [[Wp; 4]; 3] {
     [[n[0], n[4], n[1], n[5]], [n[3], n[4], n[0], n[5]], [n[0], n[1], n[2], n[5]]]
 }
 
@@ -296,8 +302,8 @@ fn abc(ed: &[[usize; 2]], a1: usize, a2: usize) -> (usize, usize, usize) {
 
 impl Ctx<'_> {
     /// Children of simplex `sub` (`xdecov`): connectivities with the local
-    /// ids 101.. for the intersection points on edges.
-    fn decov(&self, sub: &[u32], inter: &[Inter], npts: usize) -> Result<Vec<Vec<u32>>, String> {
+    /// the intersection points of the simplex ([`Wp::Inter`]).
+    fn decov(&self, sub: &[Wp], inter: &[Inter], npts: usize) -> Result<Vec<Vec<Wp>>, String> {
         let n = inter.len();
         let ed = self.edges();
         let s = |k: usize| sub[k - 1];
@@ -307,7 +313,7 @@ impl Ctx<'_> {
                 subcell_type(self.dim).name()
             )
         };
-        let mut out: Vec<Vec<u32>> = Vec::new();
+        let mut out: Vec<Vec<Wp>> = Vec::new();
         if self.dim == 1 {
             // A boundary segment (`xdecov`, ndime = 1).
             match n {
@@ -320,8 +326,8 @@ impl Ctx<'_> {
                         if a1 == 0 {
                             return Err(bad("unexpected point order"));
                         }
-                        out.push(vec![101, s(ed[a1 - 1][0])]);
-                        out.push(vec![101, s(ed[a1 - 1][1])]);
+                        out.push(vec![I(1), s(ed[a1 - 1][0])]);
+                        out.push(vec![I(1), s(ed[a1 - 1][1])]);
                     }
                 }
                 2 => {
@@ -349,9 +355,9 @@ impl Ctx<'_> {
                             if a1 != 0 || a2 == 0 {
                                 return Err(bad("unexpected point order"));
                             }
-                            let v = inter[0].node;
-                            out.push(vec![v, 102, s(ed[a2 - 1][0])]);
-                            out.push(vec![v, 102, s(ed[a2 - 1][1])]);
+                            let v = inter[0].node.ok_or_else(|| bad("unexpected point order"))?;
+                            out.push(vec![v, I(2), s(ed[a2 - 1][0])]);
+                            out.push(vec![v, I(2), s(ed[a2 - 1][1])]);
                         }
                         _ => {
                             if a1 == 0 {
@@ -361,9 +367,9 @@ impl Ctx<'_> {
                             if a * b * c == 0 {
                                 return Err(bad("the two cut edges share no vertex"));
                             }
-                            out.push(vec![101, 102, s(a)]);
-                            out.push(vec![101, 102, s(c)]);
-                            out.push(vec![101, s(b), s(c)]);
+                            out.push(vec![I(1), I(2), s(a)]);
+                            out.push(vec![I(1), I(2), s(c)]);
+                            out.push(vec![I(1), s(b), s(c)]);
                         }
                     }
                 }
@@ -392,9 +398,11 @@ impl Ctx<'_> {
                             if a1 != 0 || a2 != 0 || a3 == 0 {
                                 return Err(bad("unexpected point order"));
                             }
-                            let (v1, v2) = (inter[0].node, inter[1].node);
-                            out.push(vec![v1, v2, 103, s(ed[a3 - 1][0])]);
-                            out.push(vec![v1, v2, 103, s(ed[a3 - 1][1])]);
+                            let (Some(v1), Some(v2)) = (inter[0].node, inter[1].node) else {
+                                return Err(bad("unexpected point order"));
+                            };
+                            out.push(vec![v1, v2, I(3), s(ed[a3 - 1][0])]);
+                            out.push(vec![v1, v2, I(3), s(ed[a3 - 1][1])]);
                         }
                         1 => {
                             if a1 != 0 || a2 == 0 || a3 == 0 {
@@ -404,10 +412,10 @@ impl Ctx<'_> {
                             if a * b * c == 0 {
                                 return Err(bad("the two cut edges share no vertex"));
                             }
-                            let v = inter[0].node;
-                            out.push(vec![v, 102, 103, s(a)]);
-                            out.push(vec![v, 102, 103, s(c)]);
-                            out.push(vec![v, 102, s(b), s(c)]);
+                            let v = inter[0].node.ok_or_else(|| bad("unexpected point order"))?;
+                            out.push(vec![v, I(2), I(3), s(a)]);
+                            out.push(vec![v, I(2), I(3), s(c)]);
+                            out.push(vec![v, I(2), s(b), s(c)]);
                         }
                         _ => {
                             let (a, b, c) = abc(ed, a1, a2);
@@ -416,8 +424,8 @@ impl Ctx<'_> {
                             if a * b * c * d == 0 {
                                 return Err(bad("inconsistent cut edges"));
                             }
-                            out.push(vec![101, 102, 103, s(a)]);
-                            let pr = [103, 101, 102, s(d), s(b), s(c)];
+                            out.push(vec![I(1), I(2), I(3), s(a)]);
+                            let pr = [I(3), I(1), I(2), s(d), s(b), s(c)];
                             out.extend(xpente(&pr).iter().map(|t| t.to_vec()));
                         }
                     }
@@ -432,8 +440,8 @@ impl Ctx<'_> {
                     if va * vb * vc * vd == 0 {
                         return Err(bad("inconsistent cut edges"));
                     }
-                    let p1 = [104, 102, s(vc), 103, 101, s(vb)];
-                    let p2 = [s(va), 101, 102, s(vd), 103, 104];
+                    let p1 = [I(4), I(2), s(vc), I(3), I(1), s(vb)];
+                    let p2 = [s(va), I(1), I(2), s(vd), I(3), I(4)];
                     out.extend(xpente(&p1).iter().map(|t| t.to_vec()));
                     out.extend(xpente(&p2).iter().map(|t| t.to_vec()));
                 }
@@ -445,7 +453,7 @@ impl Ctx<'_> {
 
     /// Orientation of the tetrahedra (`xdecov`): a negative volume swaps
     /// vertices 3 and 4.
-    fn orient(&self, children: &mut [Vec<u32>], local: &[Inter]) -> Result<(), String> {
+    fn orient(&self, children: &mut [Vec<Wp>], local: &[Inter]) -> Result<(), String> {
         if self.dim != 3 {
             return Ok(());
         }
@@ -468,7 +476,7 @@ impl Ctx<'_> {
     /// vertices.
     fn heaviside(
         &self,
-        children: &[Vec<u32>],
+        children: &[Vec<Wp>],
         local: &[Inter],
         parent_he: &[i32],
         ifiss: usize,
@@ -569,11 +577,11 @@ pub fn orient_boundary(cut: &mut Cutting, mesh_dim: usize, outward: &[f64; 3]) -
 }
 
 fn cut_linear(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Result<Cutting, String> {
-    let (dim, nno, split): (usize, usize, Vec<Vec<u32>>) = match t {
-        CellType::Seg2 => (1, 2, vec![vec![1, 2]]),
-        CellType::Tria3 => (2, 3, vec![vec![1, 2, 3]]),
+    let (dim, nno, split): (usize, usize, Vec<Vec<Wp>>) = match t {
+        CellType::Seg2 => (1, 2, vec![vec![N(1), N(2)]]),
+        CellType::Tria3 => (2, 3, vec![vec![N(1), N(2), N(3)]]),
         CellType::Quad4 => (2, 4, QUAD4_SPLIT.iter().map(|s| s.to_vec()).collect()),
-        CellType::Tetra4 => (3, 4, vec![vec![1, 2, 3, 4]]),
+        CellType::Tetra4 => (3, 4, vec![vec![N(1), N(2), N(3), N(4)]]),
         CellType::Penta6 => (3, 6, PENTA6_SPLIT.iter().map(|s| s.to_vec()).collect()),
         CellType::Hexa8 => (3, 8, HEXA8_SPLIT.iter().map(|s| s.to_vec()).collect()),
         _ => {
@@ -642,14 +650,14 @@ fn cut_linear(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackInCe
                 }
                 for ch in children.iter_mut() {
                     for v in ch.iter_mut() {
-                        if *v == 101 + ipt as u32 {
-                            *v = 1001 + ni as u32;
+                        if *v == Wp::Inter(ipt as u8 + 1) {
+                            *v = Wp::PInt(ni as u16 + 1);
                         }
                     }
                 }
             }
             for (k, (ch, he)) in children.into_iter().zip(hes).enumerate() {
-                if ch.iter().any(|&v| (100..1000).contains(&v)) {
+                if ch.iter().any(|v| matches!(v, Wp::Inter(_))) {
                     return Err("TOPOSE: internal error, a local point id was left in a sub-cell".into());
                 }
                 let mut h = heav[it].clone();
@@ -668,7 +676,7 @@ fn cut_linear(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackInCe
     let rnodes = node_coords(t);
     let mut points: Vec<CutPoint> = (0..nno)
         .map(|j| CutPoint {
-            id: (j + 1) as u32,
+            id: PointId::Node(j as u8 + 1),
             xi: rnodes[j],
             x: coords[j],
             lsn: (0..ncr).map(|k| cracks[k].lsn[j]).collect(),
@@ -676,15 +684,13 @@ fn cut_linear(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackInCe
         .collect();
     for (k, p) in ctx.pint.iter().enumerate() {
         let lsn = (0..ncr).map(|f| if on_crack.contains(&(k, f)) { 0.0 } else { ctx.interp(&p.xi, f) }).collect();
-        points.push(CutPoint { id: 1001 + k as u32, xi: p.xi, x: p.x, lsn });
+        points.push(CutPoint { id: PointId::Intersection(k as u16 + 1), xi: p.xi, x: p.x, lsn });
     }
-    let index = |id: u32| -> Result<usize, String> {
-        if id as usize <= nno {
-            Ok(id as usize - 1)
-        } else if id > 1000 && ((id - 1001) as usize) < ctx.pint.len() {
-            Ok(nno + (id - 1001) as usize)
-        } else {
-            Err(format!("TOPOSE: internal error, point {id} missing"))
+    let index = |id: Wp| -> Result<usize, String> {
+        match id {
+            Wp::Node(j) if (1..=nno).contains(&usize::from(j)) => Ok(usize::from(j) - 1),
+            Wp::PInt(k) if (1..=ctx.pint.len()).contains(&usize::from(k)) => Ok(nno + usize::from(k) - 1),
+            _ => Err(format!("TOPOSE: internal error, point {id:?} missing")),
         }
     };
     let subcells = subs
@@ -700,7 +706,7 @@ mod tests {
     use super::*;
 
     fn ids(cut: &Cutting, s: &SubCell) -> Vec<u32> {
-        s.nodes.iter().map(|&i| cut.points[i].id).collect()
+        s.nodes.iter().map(|&i| cut.points[i].id.number()).collect()
     }
 
     fn area(cut: &Cutting, s: &SubCell) -> f64 {
@@ -746,7 +752,7 @@ mod tests {
         );
         let he: Vec<i32> = cut.subcells.iter().map(|s| s.he[0]).collect();
         assert_eq!(he, vec![1, -1, -1, -1, 1, 1]);
-        let x = |id: u32| cut.points.iter().find(|p| p.id == id).unwrap().x;
+        let x = |id: u32| cut.points.iter().find(|p| p.id.number() == id).unwrap().x;
         // 1001 on the diagonal 2-4, 1002 on 4-1 at y = 0.3, 1003 on 2-3 at y = 0.6.
         assert!((x(1001)[0] - 0.7 / 0.65).abs() < 1e-14 && (x(1001)[1] - (1.0 - 0.35 / 0.65)).abs() < 1e-14);
         assert!(x(1002)[0].abs() < 1e-15 && (x(1002)[1] - 0.3).abs() < 1e-15);
@@ -768,7 +774,7 @@ mod tests {
         assert_eq!(all[0], vec![1, 1001, 2]);
         assert_eq!(all[1], vec![1002, 1001, 2]);
         assert_eq!(all[2], vec![1, 1001, 4]);
-        assert_eq!(cut.points.iter().filter(|p| p.id > 1000).count(), 2);
+        assert_eq!(cut.points.iter().filter(|p| matches!(p.id, PointId::Intersection(_))).count(), 2);
         let total: f64 = cut.subcells.iter().map(|s| area(&cut, s).abs()).sum();
         assert!((total - 2.0).abs() < 1e-14);
         check_sides(&cut);
@@ -791,9 +797,9 @@ mod tests {
         assert_eq!(cut.subcells.len(), 4 + 4 + 6 + 4 + 4 + 6);
         // Intersection points: the 4 vertical edges, the diagonals of the 4
         // side faces and the body diagonal 4-6.
-        let npint = cut.points.iter().filter(|p| p.id > 1000).count();
+        let npint = cut.points.iter().filter(|p| matches!(p.id, PointId::Intersection(_))).count();
         assert_eq!(npint, 4 + 4 + 1);
-        for p in cut.points.iter().filter(|p| p.id > 1000) {
+        for p in cut.points.iter().filter(|p| matches!(p.id, PointId::Intersection(_))) {
             assert!(p.lsn[0].abs() < 1e-15);
         }
         // First tetra (6,3,2,4), cut on its edges 1-2 (6-3), 1-3 (6-2), 1-4
@@ -806,12 +812,12 @@ mod tests {
         assert_eq!(&he[..1], &[1]);
         assert_eq!(&he[6..9], &[-1, -1, -1]);
         // 1003 on the body diagonal 4-6 (the split's inner edge).
-        let p = |id: u32| cut.points.iter().find(|p| p.id == id).unwrap().x;
+        let p = |id: u32| cut.points.iter().find(|p| p.id.number() == id).unwrap().x;
         let d = p(1003);
         assert!(
             (d[0] - 4.0 / 9.0).abs() < 1e-15 && (d[1] - 5.0 / 9.0).abs() < 1e-15 && (d[2] - 4.0 / 9.0).abs() < 1e-15
         );
-        let x = |id: u32| cut.points.iter().find(|p| p.id == id).unwrap().x;
+        let x = |id: u32| cut.points.iter().find(|p| p.id.number() == id).unwrap().x;
         // 1001 on 6-3 (the face diagonal x = 1 from (1,0,1) to (1,1,0)): z = 0.5 → y = 0.5.
         assert!((x(1001)[2] - 0.5).abs() < 1e-15 && (x(1001)[1] - 0.5).abs() < 1e-15);
         // 1002 on the vertical edge 6-2 at z = 0.5.

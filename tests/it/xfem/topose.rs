@@ -117,9 +117,9 @@ fn check_geometry(case: &Case, expect_junction: &str) {
             // Parent nodes carry their nodal level set.
             for &i in &s.nodes {
                 let p = &cut.points[i];
-                if p.id < 1000 {
+                if let Some(k) = p.id.node() {
                     for (f, l) in lsn.iter().enumerate() {
-                        assert_eq!(p.lsn[f], l[p.id as usize - 1]);
+                        assert_eq!(p.lsn[f], l[k]);
                     }
                 }
             }

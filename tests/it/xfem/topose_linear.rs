@@ -12,7 +12,7 @@ use crate::common::*;
 use aster::fem::reference::jacobian_det;
 use aster::mesh::{CellType, Mesh};
 use aster::xfem::postmail::base36;
-use aster::xfem::topose::{CrackInCell, Cutting};
+use aster::xfem::topose::{CrackInCell, Cutting, PointId};
 use aster::xfem::topose_linear::topose_linear;
 use aster::xfem::{build_interface, Crack};
 use std::collections::{BTreeMap, HashMap};
@@ -151,13 +151,15 @@ fn check(case: &Case) -> (usize, usize, usize) {
             }
         }
         for p in &cut.points {
-            if p.id < 1000 {
+            if let Some(k) = p.id.node() {
                 for (f, l) in case.lsn[&c].iter().enumerate() {
-                    assert_eq!(p.lsn[f], l[p.id as usize - 1]);
+                    assert_eq!(p.lsn[f], l[k]);
                 }
             }
         }
-        if cut.subcells.len() > if m.dim == 2 { 2 } else { 6 } || cut.points.iter().any(|p| p.id > 1000) {
+        if cut.subcells.len() > if m.dim == 2 { 2 } else { 6 }
+            || cut.points.iter().any(|p| matches!(p.id, PointId::Intersection(_)))
+        {
             ncut += 1;
         }
     }
@@ -181,7 +183,7 @@ fn names(case: &Case) -> Vec<(String, [f64; 3], bool)> {
                     continue;
                 }
                 let p = &cut.points[pi];
-                let on = p.id > 1000 || p.lsn.contains(&0.0);
+                let on = matches!(p.id, PointId::Intersection(_)) || p.lsn.contains(&0.0);
                 let prefix = if !on {
                     "NX"
                 } else {
