@@ -188,8 +188,47 @@ pub struct JunctionLevelSets {
     pub lst: Vec<f64>,
 }
 
-/// Node status (`xstano`): 0 none, 1 Heaviside, 2 crack tip, 3 both.
-pub type Status = i8;
+/// The enrichment of a node by one crack (`xstano`'s STNO), with
+/// Code_Aster's code of each value ([`Status::code`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Status {
+    /// 0: not enriched.
+    #[default]
+    None,
+    /// 1: Heaviside enrichment (the normal level set changes sign over the
+    /// node's support, which the crack crosses entirely).
+    Heaviside,
+    /// 2: crack-tip enrichment within the enrichment radius (`RAYON_ENRI`).
+    Tip,
+    /// −2: crack-tip enrichment of a node whose support the crack front
+    /// crosses, without Heaviside enrichment.
+    TipOnFront,
+    /// 3: both Heaviside and crack-tip enrichment.
+    HeavisideAndTip,
+}
+
+impl Status {
+    /// Code_Aster's value in STNO.
+    pub fn code(self) -> i8 {
+        match self {
+            Status::None => 0,
+            Status::Heaviside => 1,
+            Status::Tip => 2,
+            Status::TipOnFront => -2,
+            Status::HeavisideAndTip => 3,
+        }
+    }
+
+    /// Is the node Heaviside-enriched (STNO 1 or 3)?
+    pub fn heaviside(self) -> bool {
+        matches!(self, Status::Heaviside | Status::HeavisideAndTip)
+    }
+
+    /// Is the node crack-tip enriched (|STNO| ≥ 2)?
+    pub fn tip(self) -> bool {
+        matches!(self, Status::Tip | Status::TipOnFront | Status::HeavisideAndTip)
+    }
+}
 
 /// Running min/max of the level sets over the intersection points of one node's support.
 struct PointRange {
@@ -322,7 +361,7 @@ pub fn node_status(
             support[n].push(c);
         }
     }
-    let mut status = vec![0; mesh.nnodes()];
+    let mut status = vec![Status::None; mesh.nnodes()];
     for &ino in nodes {
         if support[ino].is_empty() {
             continue;
@@ -358,32 +397,29 @@ pub fn node_status(
         if !isup {
             continue;
         }
-        let mut enr1 = 0;
-        let mut enr2 = 0;
-        if minlsn * maxlsn < 0.0 && range.maxlst <= eps {
-            enr1 = 1;
-        }
-        if minlsn * maxlsn <= eps && range.minlst * range.maxlst <= eps {
-            enr2 = -2;
-        }
+        // Heaviside (Code_Aster's enr1) and crack-tip (enr2) enrichment.
+        let mut heaviside = minlsn * maxlsn < 0.0 && range.maxlst <= eps;
+        let mut tip = minlsn * maxlsn <= eps && range.minlst * range.maxlst <= eps;
         for &(smin, smax, lmin) in &range.junc {
             // Wrong side of the junction: no point where the branch exists.
             if smin >= 0.0 && lmin < 0.0 {
-                enr1 = 0;
-                enr2 = 0;
+                heaviside = false;
+                tip = false;
             }
             // On the junction.
-            if enr2 != 0 && smin * smax <= eps && lmin < 0.0 {
-                enr2 = 0;
+            if tip && smin * smax <= eps && lmin < 0.0 {
+                tip = false;
                 if minlsn * maxlsn < 0.0 {
-                    enr1 = 1;
+                    heaviside = true;
                 }
             }
         }
-        if enr2 == -2 && enr1 == 1 {
-            enr2 = 2;
-        }
-        status[ino] = enr1 + enr2;
+        status[ino] = match (heaviside, tip) {
+            (false, false) => Status::None,
+            (true, false) => Status::Heaviside,
+            (false, true) => Status::TipOnFront,
+            (true, true) => Status::HeavisideAndTip,
+        };
     }
     status
 }
@@ -392,9 +428,7 @@ pub fn node_status(
 /// cells excepted (`xstam1`'s MAENR1 and MAENR3).
 pub fn heaviside_cells(mesh: &Mesh, status: &[Status]) -> Vec<usize> {
     (0..mesh.cells.len())
-        .filter(|&c| {
-            mesh.cell_types[c] != CellType::Poi1 && mesh.cells[c].iter().any(|&n| matches!(status[n].abs(), 1 | 3))
-        })
+        .filter(|&c| mesh.cell_types[c] != CellType::Poi1 && mesh.cells[c].iter().any(|&n| status[n].heaviside()))
         .collect()
 }
 
@@ -484,8 +518,8 @@ mod tests {
         let st = node_status(&mesh, &nodes, &cut, &lsn, &lst, &[]);
         // Every node of the cut row: y ∈ {1, 1.5, 2}.
         let expect = mesh.coords.iter().filter(|x| (1.0..=2.0).contains(&x[1])).count();
-        assert_eq!(st.iter().filter(|&&s| s == 1).count(), expect);
-        assert!(st.iter().all(|&s| s == 0 || s == 1));
+        assert_eq!(st.iter().filter(|&&s| s == Status::Heaviside).count(), expect);
+        assert!(st.iter().all(|&s| s == Status::None || s == Status::Heaviside));
         let hc = heaviside_cells(&mesh, &st);
         // The cut row and the rows above and below share nodes with it.
         assert_eq!(hc.iter().filter(|&&c| mesh.cell_types[c].dim() == 2).count(), 12);
@@ -513,7 +547,7 @@ mod tests {
         // not < 0) and y = 3: vetoed unless the node also touches a lower cell.
         for (k, x) in mesh.coords.iter().enumerate() {
             let expect = (2.0..=3.0).contains(&x[0]) && x[1] <= 2.0;
-            assert_eq!(st[k] == 1, expect, "node {k} at {x:?}");
+            assert_eq!(st[k] == Status::Heaviside, expect, "node {k} at {x:?}");
         }
     }
 }

@@ -54,7 +54,7 @@ pub struct Crack {
     pub junction_node: Option<usize>,
     /// Cells where φ changes sign over the vertices.
     pub cut_cells: Vec<usize>,
-    /// Node status: 0 none, 1 Heaviside (2, 3: crack tip, never for an interface).
+    /// Node status (crack-tip values never occur for an interface).
     pub status: Vec<Status>,
     /// Cells with at least one Heaviside-enriched node.
     pub heaviside_cells: Vec<usize>,
@@ -75,7 +75,7 @@ impl std::fmt::Debug for Crack {
 impl Crack {
     /// Is the node Heaviside-enriched by this crack?
     pub fn enriched(&self, node: usize) -> bool {
-        matches!(self.status[node], 1 | 3)
+        self.status[node].heaviside()
     }
 
     /// The Heaviside-enriched nodes, in node order.
@@ -208,7 +208,7 @@ pub fn build_interface(
         ));
     }
     let status = levelset::node_status(&mesh, &enri_nodes, &cut_cells, &lsn, &lst, &jls);
-    if let Some(n) = (0..nn).find(|&n| status[n].abs() >= 2) {
+    if let Some(n) = (0..nn).find(|&n| status[n].tip()) {
         return Err(fail(
             "",
             format!(

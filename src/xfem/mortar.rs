@@ -78,7 +78,7 @@ pub struct Packets {
 pub struct CrackTopo<'a> {
     /// Normal level set per mesh node.
     pub lsn: &'a [f64],
-    /// Node status (0: not enriched by this crack).
+    /// Node status ([`Status::None`]: not enriched by this crack).
     pub status: &'a [Status],
     /// The crack's Heaviside cells, in cell order.
     pub heaviside_cells: &'a [usize],
@@ -134,7 +134,8 @@ fn own_contact(mesh: &Mesh, cell: usize, k: &CrackTopo, multi: bool, support: &[
         hi = hi.max(la).max(lb);
         if multi && la * lb <= 0.0 {
             let (sa, sb) = (k.status[a], k.status[b]);
-            if (la * lb < 0.0 && (sa == 0 || sb == 0)) || (la == 0.0 && sa == 0) || (lb == 0.0 && sb == 0) {
+            let (na, nb) = (sa == Status::None, sb == Status::None);
+            if (la * lb < 0.0 && (na || nb)) || (la == 0.0 && na) || (lb == 0.0 && nb) {
                 return false;
             }
         }
