@@ -10,7 +10,7 @@
 #   BENCH_3D=NX,NY,NZ       HEXA20 cells of the 3 x 2 x 1 block (default 40,26,14: ~193 k dofs,
 #                           which keeps the script near 6 min here; 46,30,16 gives ~289 k dofs but
 #                           ~12 min and ~14 GiB peak); BENCH_3D=none skips 3D
-#   BENCH_GETFEM_THREADS=N  OpenBLAS threads for GetFEM/MUMPS (default 1: aster-rs factorizes on one thread)
+#   BENCH_GETFEM_THREADS=N  OpenBLAS threads for GetFEM/MUMPS (default 1: sequential MUMPS, as the issues measure it)
 #   BENCH_DIR=PATH          work folder (default: a fresh temp folder, removed at the end)
 #
 # For each case: `aster mesh box` writes the mesh, a .comm (clamp/symmetry + uniform traction, D_PLAN or 3D,
@@ -183,7 +183,7 @@ gf = {r.get("name"): r for r in rows if "name" in r}
 f = lambda r, k: float(r.get(k) or "nan")
 failed = False
 print()
-print("aster-rs (release, one thread); phases in seconds; mesh = LIRE_MAILLAGE, post = SIEF_ELGA in MECA_STATIQUE"
+print("aster-rs (release, both cores); phases in seconds; mesh = LIRE_MAILLAGE, post = SIEF_ELGA in MECA_STATIQUE"
       " + CALC_CHAMP SIGM_NOEU, other = wall - phases (startup, models, loads, TEST_RESU)")
 print("| case | cells | dofs | mesh | numbering | assembly | factorization | solve | post | other | wall | peak RSS MiB"
       " | (total - fact.)/fact. | check |")

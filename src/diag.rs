@@ -5,7 +5,9 @@
 //! the command it arose in. The runner turns spans into `file:line:col`.
 
 use crate::syntax::ast::Span;
+use std::cell::Cell;
 use std::fmt;
+use std::time::{Duration, Instant};
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ErrorKind {
@@ -21,6 +23,10 @@ pub enum ErrorKind {
     Io,
     /// A command ran and failed (bad data, numerical failure, ...).
     Runtime,
+    /// A bug of aster-rs, not of the command file: a panic the runner caught.
+    Internal,
+    /// The run's time limit passed (see [`Deadline`]).
+    TimeLimit,
 }
 
 #[derive(Debug, Clone)]
@@ -51,6 +57,10 @@ impl Error {
     }
     pub fn unsupported(msg: impl Into<String>) -> Self {
         Self::new(ErrorKind::Unsupported, msg)
+    }
+    /// A caught panic: `internal error: MESSAGE`.
+    pub fn internal(panic: &str) -> Self {
+        Self::new(ErrorKind::Internal, format!("internal error: {panic}"))
     }
     /// Attach a span unless a more precise one is already there.
     pub fn at(mut self, span: Span) -> Self {
@@ -96,3 +106,72 @@ impl fmt::Display for Error {
 }
 
 impl std::error::Error for Error {}
+
+/// When a run must stop: `aster run --time-limit`, or the .export's `P time_limit`.
+///
+/// The runner sets it for its thread with [`with_deadline`]; the interpreter checks it every few
+/// hundred statements and loop iterations, the runner between commands and the stages in their long
+/// loops (Newton iterations), all through [`check_deadline`], which costs a clock read.
+#[derive(Debug, Clone, Copy)]
+pub struct Deadline {
+    at: Instant,
+    limit: Duration,
+}
+
+impl Deadline {
+    /// `limit` from now.
+    pub fn after(limit: Duration) -> Deadline {
+        Deadline::since(Instant::now(), limit)
+    }
+    /// `limit` from `start`.
+    pub fn since(start: Instant, limit: Duration) -> Deadline {
+        Deadline { at: start.checked_add(limit).unwrap_or(start + Duration::from_secs(1 << 40)), limit }
+    }
+    pub fn limit(&self) -> Duration {
+        self.limit
+    }
+}
+
+thread_local! {
+    static DEADLINE: Cell<Option<Deadline>> = const { Cell::new(None) };
+}
+
+/// Run `f` with `deadline` as this thread's deadline (the previous one is restored after, even if
+/// `f` panics).
+pub fn with_deadline<R>(deadline: Option<Deadline>, f: impl FnOnce() -> R) -> R {
+    struct Restore(Option<Deadline>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            DEADLINE.with(|d| d.set(self.0));
+        }
+    }
+    let _restore = Restore(DEADLINE.with(|d| d.replace(deadline)));
+    f()
+}
+
+/// A `TimeLimit` error if this thread's deadline has passed: `time limit of 2 s exceeded`.
+pub fn check_deadline() -> Result<()> {
+    match DEADLINE.with(Cell::get) {
+        Some(d) if Instant::now() >= d.at => Err(Error::new(
+            ErrorKind::TimeLimit,
+            // Rust writes 2.0 as `2`.
+            format!("time limit of {} s exceeded", d.limit.as_secs_f64()),
+        )),
+        _ => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_deadline_holds_for_its_scope_only() {
+        assert!(check_deadline().is_ok());
+        let e = with_deadline(Some(Deadline::after(Duration::ZERO)), check_deadline).unwrap_err();
+        assert_eq!(e.kind, ErrorKind::TimeLimit);
+        assert_eq!(e.msg, "time limit of 0 s exceeded");
+        assert!(with_deadline(Some(Deadline::after(Duration::from_secs(60))), check_deadline).is_ok());
+        assert!(check_deadline().is_ok());
+    }
+}

@@ -32,6 +32,10 @@ enum Cmd {
         /// Write a machine-readable summary (used by `aster suite`).
         #[arg(long, hide = true)]
         summary: Option<PathBuf>,
+        /// Stop the run with a located error past this many seconds (default: the .export's
+        /// `P time_limit`, else no limit).
+        #[arg(long, value_name = "SECONDS", value_parser = runner::export::parse_seconds)]
+        time_limit: Option<std::time::Duration>,
     },
     /// Parse and validate command files against the catalogue; compute nothing.
     Check {
@@ -68,6 +72,51 @@ enum Cmd {
         /// Absolute tolerance.
         #[arg(long, default_value_t = 1e-12)]
         atol: f64,
+    },
+    /// Run one case over a grid of variants and put error against cost:
+    /// study.csv, study.md and log-log plots (SVG) in --out.
+    Study {
+        /// The case: CASE.comm (with --unit) or CASE.export.
+        case: PathBuf,
+        /// A knob: NAME=v1,v2,... overrides the top-level assignments
+        /// `NAME = ...` of the command file and fills {NAME} in --mesh.
+        #[arg(long = "set", value_name = "NAME=V1,V2,...")]
+        knobs: Vec<String>,
+        /// A generated mesh for a unit: 'UNIT=box --cell C --n NX,NY[,NZ]
+        /// --size LX,LY[,LZ]' or 'UNIT=ring --cell C --n NR,NT[,NZ] --radii
+        /// RI,RE [--height H]'; {NAME} takes a knob's value.
+        #[arg(long = "mesh", value_name = "UNIT=SPEC")]
+        meshes: Vec<String>,
+        /// Map a logical unit to a file: N=PATH.
+        #[arg(long = "unit", value_name = "N=PATH")]
+        units: Vec<String>,
+        /// Runs at once.
+        #[arg(short = 'j', long, default_value_t = 1)]
+        jobs: usize,
+        /// Output folder (default: ./aster-study).
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Error metric to plot: a POST_ERREUR option (DEPL_RELA, ENER_RELA,
+        /// ...; DEPL_RELA#2 for the second call) or 'check' (the largest
+        /// relative error of the ANALYTIQUE check lines). Default: all found.
+        #[arg(long = "error")]
+        errors: Vec<String>,
+        /// A knob drawn as curves in the plots, one per setting of the
+        /// other knobs (default: the knobs with the most values).
+        #[arg(long = "curve")]
+        curves: Vec<String>,
+        /// Kill a run after this many seconds.
+        #[arg(long)]
+        time_limit: Option<f64>,
+        /// Run each variant this many times and keep the fastest.
+        #[arg(long, default_value_t = 1)]
+        repeat: usize,
+        /// Title of the plots (default: the case's name).
+        #[arg(long)]
+        title: Option<String>,
+        /// No progress bar.
+        #[arg(short, long)]
+        quiet: bool,
     },
     /// Show the command catalogue.
     Catalog {
@@ -108,6 +157,27 @@ enum MeshCmd {
         #[arg(long, default_value = "MAIL")]
         name: String,
     },
+    /// Write a quarter of a thick ring (2D: QUAD4, QUAD8) or of a thick-walled
+    /// cylinder (3D: HEXA8, HEXA20) on the circles of radii RI and RE, with
+    /// the groups INT (r = RI), EXT (r = RE), BAS (y = 0), GAUCHE (x = 0) and
+    /// SURFACE, or ZMIN, ZMAX and VOLUME in 3D.
+    Ring {
+        #[arg(long)]
+        cell: String,
+        /// Cells: radial, circumferential[, axial].
+        #[arg(long, value_delimiter = ',', required = true)]
+        n: Vec<usize>,
+        /// RI,RE.
+        #[arg(long, value_delimiter = ',', required = true)]
+        radii: Vec<f64>,
+        /// Height (3D).
+        #[arg(long)]
+        height: Option<f64>,
+        #[arg(short = 'o', long)]
+        output: PathBuf,
+        #[arg(long, default_value = "MAIL")]
+        name: String,
+    },
 }
 
 fn mesh_command(action: MeshCmd) -> Result<(), aster::diag::Error> {
@@ -137,6 +207,84 @@ fn mesh_command(action: MeshCmd) -> Result<(), aster::diag::Error> {
             print!("{}", m.describe(&name));
             Ok(())
         }
+        MeshCmd::Ring { cell, n, radii, height, output, name } => {
+            let t = aster::mesh::CellType::from_name(&cell.to_ascii_uppercase()).ok_or_else(|| {
+                aster::diag::Error::runtime(format!("--cell {cell}: expected QUAD4, QUAD8, HEXA8 or HEXA20"))
+            })?;
+            let [ri, re] = radii[..] else {
+                return Err(aster::diag::Error::runtime("--radii: expected RI,RE"));
+            };
+            let m = aster::mesh::generate::ring_mesh(t, &n, [ri, re], height)?;
+            aster::med::write_mesh(&output, &m, &name)?;
+            println!("wrote {}", output.display());
+            print!("{}", m.describe(&name));
+            Ok(())
+        }
+    }
+}
+
+#[allow(clippy::too_many_arguments)]
+fn study_command(
+    case: PathBuf,
+    knobs: Vec<String>,
+    meshes: Vec<String>,
+    units: Vec<String>,
+    jobs: usize,
+    out: Option<PathBuf>,
+    (errors, curves): (Vec<String>, Vec<String>),
+    (time_limit, repeat): (Option<f64>, usize),
+    title: Option<String>,
+    quiet: bool,
+) -> ExitCode {
+    use aster::study::{self, grid};
+    let parsed = (|| -> Result<study::StudyOptions, String> {
+        let title =
+            title.unwrap_or_else(|| case.file_stem().map(|s| s.to_string_lossy().to_string()).unwrap_or_default());
+        Ok(study::StudyOptions {
+            knobs: knobs.iter().map(|k| grid::Knob::parse(k)).collect::<Result<_, _>>()?,
+            meshes: meshes.iter().map(|m| grid::MeshSpec::parse(m)).collect::<Result<_, _>>()?,
+            units: units.iter().map(|u| parse_unit(u).map(|(n, p, _)| (n, p))).collect::<Result<_, _>>()?,
+            case,
+            jobs,
+            out: out.unwrap_or_else(|| PathBuf::from("aster-study")),
+            errors,
+            curves,
+            time_limit,
+            repeat,
+            progress: !quiet,
+            title,
+        })
+    })();
+    let opts = match parsed {
+        Ok(o) => o,
+        Err(e) => {
+            eprintln!("aster: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let exe = match std::env::current_exe() {
+        Ok(e) => e,
+        Err(e) => {
+            eprintln!("aster: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    match study::run_study(&exe, &opts) {
+        Ok(s) => {
+            print!("{}\n{}", study::report::markdown(&s), study::report::pareto_summary(&s));
+            for p in &s.written {
+                println!("wrote {}", p.display());
+            }
+            if !s.runs.iter().any(|r| study::report::stopped(&r.metrics)) {
+                ExitCode::SUCCESS
+            } else {
+                ExitCode::from(1)
+            }
+        }
+        Err(e) => {
+            eprintln!("aster: {e}");
+            ExitCode::from(2)
+        }
     }
 }
 
@@ -151,7 +299,7 @@ fn parse_unit(s: &str) -> Result<(i64, PathBuf, Dir), String> {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.cmd {
-        Cmd::Run { case, units, out, quiet, summary } => {
+        Cmd::Run { case, units, out, quiet, summary, time_limit } => {
             let units = match units.iter().map(|u| parse_unit(u)).collect::<Result<Vec<_>, _>>() {
                 Ok(u) => u,
                 Err(e) => {
@@ -160,10 +308,20 @@ fn main() -> ExitCode {
                 }
             };
             let opts = RunOptions { out_dir: out, units, echo: !quiet };
-            let outcome = match &case {
-                None => runner::run_default(&opts),
-                Some(c) if c.extension().map(|e| e == "export").unwrap_or(false) => runner::run_export(c, &opts),
-                Some(c) => runner::run_comm(c, &opts),
+            // The runner catches panics of the interpreter and the stages with their location; this
+            // catches one of the runner itself (reading units, delivering results).
+            let case = match &case {
+                None => runner::Case::Demo,
+                Some(c) if c.extension().map(|e| e == "export").unwrap_or(false) => runner::Case::Export(c),
+                Some(c) => runner::Case::Comm(c),
+            };
+            let outcome = runner::guard::catch(|| runner::run(case, &opts, time_limit));
+            let outcome = match outcome {
+                Ok(o) => o,
+                Err(panic) => {
+                    eprintln!("<F> {}", aster::diag::Error::internal(&panic));
+                    return ExitCode::from(2);
+                }
             };
             if let Some(s) = summary {
                 let _ = std::fs::write(s, suite::summary_text(&outcome));
@@ -215,7 +373,7 @@ fn main() -> ExitCode {
             if let Err(e) = std::fs::write(&jpath, suite::junit(&results)) {
                 eprintln!("aster: {}: {e}", jpath.display());
             }
-            if results.iter().all(|r| r.diagnostic == "OK") {
+            if results.iter().all(|r| r.diagnostic == runner::Diagnostic::Ok) {
                 ExitCode::SUCCESS
             } else {
                 ExitCode::from(1)
@@ -247,6 +405,9 @@ fn main() -> ExitCode {
                     ExitCode::from(2)
                 }
             }
+        }
+        Cmd::Study { case, knobs, meshes, units, jobs, out, errors, curves, time_limit, repeat, title, quiet } => {
+            study_command(case, knobs, meshes, units, jobs, out, (errors, curves), (time_limit, repeat), title, quiet)
         }
         Cmd::Catalog { markdown } => {
             let cat = catalogue();

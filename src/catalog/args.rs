@@ -41,7 +41,7 @@ impl Val {
     pub fn show(&self) -> String {
         match self {
             Val::I(i) => i.to_string(),
-            Val::R(r) => crate::interp::format::float_repr(*r),
+            Val::R(r) => crate::text::float_repr(*r),
             Val::C(a, b) => format!("({a}, {b})"),
             Val::T(t) => format!("'{t}'"),
             Val::Concept(c) => c.label(),

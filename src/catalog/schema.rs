@@ -61,7 +61,7 @@ impl std::fmt::Display for Lit {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Lit::I(i) => write!(f, "{i}"),
-            Lit::R(r) => write!(f, "{}", crate::interp::format::float_repr(*r)),
+            Lit::R(r) => write!(f, "{}", crate::text::float_repr(*r)),
             Lit::T(t) => write!(f, "'{t}'"),
         }
     }

@@ -84,6 +84,23 @@ impl fmt::Display for ConceptKind {
 
 /// The data a concept holds. `Pending` is what `aster check` produces: the
 /// type is known, the content was never computed.
+/// DEFI_LIST_INST: a list of instants with Code_Aster's handling of a step that fails (ECHEC).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TimeList {
+    pub instants: Vec<f64>,
+    /// EVENEMENT='ERREUR' with ACTION='DECOUPE': how a failed step is cut; None for ACTION='ARRET'.
+    pub subdivision: Option<Subdivision>,
+}
+
+/// SUBD_METHODE='MANUEL': a failed step is cut into `pas` equal steps, at most `niveau` times
+/// recursively, never below `pas_mini` (0: no bound).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Subdivision {
+    pub pas: usize,
+    pub niveau: usize,
+    pub pas_mini: f64,
+}
+
 #[derive(Debug)]
 pub enum ConceptData {
     Pending,
@@ -93,6 +110,8 @@ pub enum ConceptData {
     Table(Table),
     ListReal(Vec<f64>),
     ListInt(Vec<i64>),
+    /// DEFI_LIST_INST: the instants and what to do when a step fails.
+    ListInst(TimeList),
     Mesh(std::rc::Rc<crate::mesh::Mesh>),
     Model(model::Model),
     Material(std::rc::Rc<model::Material>),
@@ -195,6 +214,7 @@ impl Concept {
         match &*self.data() {
             ConceptData::ListReal(v) => Ok(v.clone()),
             ConceptData::ListInt(v) => Ok(v.iter().map(|i| *i as f64).collect()),
+            ConceptData::ListInst(l) => Ok(l.instants.clone()),
             _ => Err(Error::runtime(format!("{} is not a list of reals", self.label()))),
         }
     }

@@ -31,10 +31,15 @@ pub enum Modelling {
     AxisHmd,
     DPlanSi,
     AxisSi,
+    ThreeDHms,
+    ThreeDHmSi,
+    DPlanHms,
+    DPlanHmSi,
+    AxisHms,
 }
 
 impl Modelling {
-    const ALL: [(Modelling, &'static str); 14] = [
+    const ALL: [(Modelling, &'static str); 19] = [
         (Modelling::ThreeD, "3D"),
         (Modelling::ThreeDHm, "3D_HM"),
         (Modelling::ThreeDHmd, "3D_HMD"),
@@ -49,6 +54,11 @@ impl Modelling {
         (Modelling::AxisHmd, "AXIS_HMD"),
         (Modelling::DPlanSi, "D_PLAN_SI"),
         (Modelling::AxisSi, "AXIS_SI"),
+        (Modelling::ThreeDHms, "3D_HMS"),
+        (Modelling::ThreeDHmSi, "3D_HM_SI"),
+        (Modelling::DPlanHms, "D_PLAN_HMS"),
+        (Modelling::DPlanHmSi, "D_PLAN_HM_SI"),
+        (Modelling::AxisHms, "AXIS_HMS"),
     ];
 
     /// From Code_Aster's name; None for a modelisation we do not know.
@@ -65,15 +75,35 @@ impl Modelling {
     pub fn dim(self) -> usize {
         use Modelling::*;
         match self {
-            ThreeD | ThreeDHm | ThreeDHmd | ThreeDSi | ThreeDDil => 3,
+            ThreeD | ThreeDHm | ThreeDHmd | ThreeDSi | ThreeDDil | ThreeDHms | ThreeDHmSi => 3,
             _ => 2,
         }
     }
 
-    /// Saturated hydro-mechanics (the _HM and _HMD variants).
+    /// Saturated hydro-mechanics (the _HM, _HMD, _HMS and _HM_SI variants).
     pub fn is_hm(self) -> bool {
         use Modelling::*;
-        matches!(self, ThreeDHm | ThreeDHmd | DPlanHm | DPlanHmd | AxisHm | AxisHmd)
+        matches!(
+            self,
+            ThreeDHm
+                | ThreeDHmd
+                | ThreeDHms
+                | ThreeDHmSi
+                | DPlanHm
+                | DPlanHmd
+                | DPlanHms
+                | DPlanHmSi
+                | AxisHm
+                | AxisHmd
+                | AxisHms
+        )
+    }
+
+    /// The cells an element of this modelisation is built on: HM elements exist on quadratic cells
+    /// only (volume cells and their skins), the others on every cell of the right dimension.
+    pub fn accepts(self, t: crate::mesh::CellType) -> bool {
+        use crate::mesh::CellType::*;
+        !self.is_hm() || matches!(t, Seg3 | Tria6 | Quad8 | Tetra10 | Pyram13 | Penta15 | Hexa20)
     }
 
     /// The mechanical kernel of `fem` it computes with: the pure ones, and the skeleton of the HM
@@ -82,10 +112,10 @@ impl Modelling {
         use crate::fem::elasticity::Modelisation as M;
         use Modelling::*;
         match self {
-            ThreeD | ThreeDHm | ThreeDHmd => Some(M::ThreeD),
-            DPlan | DPlanHm | DPlanHmd => Some(M::DPlan),
+            ThreeD | ThreeDHm | ThreeDHmd | ThreeDHms | ThreeDHmSi => Some(M::ThreeD),
+            DPlan | DPlanHm | DPlanHmd | DPlanHms | DPlanHmSi => Some(M::DPlan),
             CPlan => Some(M::CPlan),
-            Axis | AxisHm | AxisHmd => Some(M::Axis),
+            Axis | AxisHm | AxisHmd | AxisHms => Some(M::Axis),
             _ => None,
         }
     }
@@ -210,6 +240,8 @@ pub enum LoadItem {
     Pressure { cells: Vec<usize>, value: LoadValue },
     /// PESANTEUR: gravity of magnitude `g` along `direction`, on the cells.
     Gravity { g: f64, direction: [f64; 3], cells: Option<Vec<usize>> },
+    /// FLUX_THM_REP FLUN_HYDR1: a fluid mass flux entering through skin cells (kg m⁻² s⁻¹).
+    FluxThm { cells: Vec<usize>, value: LoadValue },
     /// LIAISON_DDL: Σ coef·u(node, component) = value.
     Relation { terms: Vec<(usize, String, f64)>, value: LoadValue },
 }

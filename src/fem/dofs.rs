@@ -20,36 +20,58 @@ pub fn component_index(name: &str) -> Option<usize> {
     COMPONENTS.iter().position(|c| *c == name)
 }
 
-/// Numbering of the displacement dofs of a model.
+/// Numbering of the dofs of a model: for every node carried by the model's cells, in node order, the
+/// components it carries among `components` (`DX DY [DZ]` on every node of a mechanical model; `DX DY
+/// [DZ] PRE1` on the vertices and `DX DY [DZ]` on the middle nodes of an HM model), in that order.
 #[derive(Debug, Clone)]
 pub struct DofNumbering {
-    /// Components per node (2 or 3).
+    /// Components per node at most (2 or 3 for mechanics, 3 or 4 with `PRE1`).
     pub ncomp: usize,
+    /// Their names, in numbering order.
+    pub components: Vec<&'static str>,
     /// First dof of each mesh node, `usize::MAX` for nodes outside the model.
     node_first: Vec<usize>,
+    /// The components each node carries (bit k: component k), 0 outside the model.
+    node_mask: Vec<u8>,
     /// Node of each dof.
     pub dof_node: Vec<usize>,
+    /// Component of each dof.
+    dof_comp: Vec<u8>,
 }
 
 impl DofNumbering {
     /// Number the nodes carried by `cells` (lists of node indices) among
-    /// `nnodes` mesh nodes, `ncomp` components each, in node order.
+    /// `nnodes` mesh nodes, `ncomp` displacement components each, in node order.
     pub fn new<'a>(nnodes: usize, ncomp: usize, cells: impl IntoIterator<Item = &'a [usize]>) -> DofNumbering {
-        let mut used = vec![false; nnodes];
+        let mut mask = vec![0u8; nnodes];
+        let all = (1u8 << ncomp) - 1;
         for c in cells {
             for &n in c {
-                used[n] = true;
+                mask[n] = all;
             }
         }
-        let mut node_first = vec![usize::MAX; nnodes];
+        DofNumbering::with_components(COMPONENTS[..ncomp].to_vec(), mask)
+    }
+
+    /// Number every node whose `mask` is not empty, with the components of its mask (bit k:
+    /// `components[k]`), in node order.
+    pub fn with_components(components: Vec<&'static str>, mask: Vec<u8>) -> DofNumbering {
+        assert!(components.len() <= 8, "at most 8 components per node");
+        let mut node_first = vec![usize::MAX; mask.len()];
         let mut dof_node = Vec::new();
-        for (n, u) in used.iter().enumerate() {
-            if *u {
+        let mut dof_comp = Vec::new();
+        for (n, &m) in mask.iter().enumerate() {
+            if m != 0 {
                 node_first[n] = dof_node.len();
-                dof_node.extend(std::iter::repeat_n(n, ncomp));
+                for k in 0..components.len() {
+                    if m & (1 << k) != 0 {
+                        dof_node.push(n);
+                        dof_comp.push(k as u8);
+                    }
+                }
             }
         }
-        DofNumbering { ncomp, node_first, dof_node }
+        DofNumbering { ncomp: components.len(), components, node_first, node_mask: mask, dof_node, dof_comp }
     }
 
     /// Numbering for the cells `cell_ids` of `mesh`.
@@ -62,10 +84,19 @@ impl DofNumbering {
         self.dof_node.len()
     }
 
-    /// Dof of `(node, comp)`, `None` when the node is not in the model.
+    /// Dof of `(node, comp)`, `None` when the node is not in the model or does not carry the component.
     pub fn dof(&self, node: usize, comp: usize) -> Option<usize> {
         let f = *self.node_first.get(node)?;
-        (f != usize::MAX && comp < self.ncomp).then_some(f + comp)
+        let m = self.node_mask[node];
+        if f == usize::MAX || comp >= self.ncomp || m & (1 << comp) == 0 {
+            return None;
+        }
+        Some(f + (m & ((1u8 << comp) - 1)).count_ones() as usize)
+    }
+
+    /// The index of a component name among the numbering's components.
+    pub fn component(&self, name: &str) -> Option<usize> {
+        self.components.iter().position(|c| *c == name)
     }
 
     /// True when the node carries dofs.
@@ -75,17 +106,19 @@ impl DofNumbering {
 
     /// `(node, component)` of a dof.
     pub fn node_comp(&self, dof: usize) -> (usize, usize) {
-        let n = self.dof_node[dof];
-        (n, dof - self.node_first[n])
+        (self.dof_node[dof], self.dof_comp[dof] as usize)
     }
 
-    /// Dofs of a cell, node by node (`None` if a node is not numbered).
+    /// Dofs of a cell, node by node, each node's components in order (`None` if a node is not
+    /// numbered).
     pub fn cell_dofs(&self, nodes: &[usize]) -> Option<Vec<usize>> {
         let mut v = Vec::with_capacity(nodes.len() * self.ncomp);
         for &n in nodes {
-            for c in 0..self.ncomp {
-                v.push(self.dof(n, c)?);
+            let f = *self.node_first.get(n)?;
+            if f == usize::MAX {
+                return None;
             }
+            v.extend(f..f + self.node_mask[n].count_ones() as usize);
         }
         Some(v)
     }
@@ -94,7 +127,7 @@ impl DofNumbering {
     pub fn label(&self, dof: usize, mesh: Option<&Mesh>) -> String {
         let (n, c) = self.node_comp(dof);
         let name = mesh.and_then(|m| m.node_names.get(n).cloned()).unwrap_or_else(|| format!("N{}", n + 1));
-        format!("{name} {}", COMPONENTS[c])
+        format!("{name} {}", self.components[c])
     }
 }
 
@@ -351,6 +384,21 @@ mod tests {
         assert_eq!(num.dof(1, 0), None);
         assert_eq!(num.node_comp(5), (3, 1));
         assert_eq!(num.label(5, None), "N4 DY");
+    }
+
+    #[test]
+    fn numbering_with_pressure_on_vertices_only() {
+        // Nodes 0 and 1 vertices (DX DY PRE1), node 2 a middle node (DX DY), node 3 outside.
+        let num = DofNumbering::with_components(vec!["DX", "DY", "PRE1"], vec![0b111, 0b111, 0b011, 0]);
+        assert_eq!(num.ndofs(), 8);
+        assert_eq!(num.dof(1, 2), Some(5));
+        assert_eq!(num.dof(2, 2), None);
+        assert_eq!(num.dof(2, 1), Some(7));
+        assert_eq!(num.dof(3, 0), None);
+        assert_eq!(num.cell_dofs(&[2, 0]), Some(vec![6, 7, 0, 1, 2]));
+        assert_eq!(num.node_comp(5), (1, 2));
+        assert_eq!(num.label(2, None), "N1 PRE1");
+        assert_eq!(num.component("PRE1"), Some(2));
     }
 
     #[test]

@@ -285,6 +285,14 @@ fn int_arg(name: &str, v: &Value) -> Result<i64> {
     v.as_int().ok_or_else(|| Error::python(format!("TypeError: {name}() needs an integer, not {}", v.type_name())))
 }
 
+/// The width of `str.ljust`, `rjust`, `center`, `zfill`: an int, at most `text::MAX_WIDTH`.
+fn width_arg(name: &str, v: &Value) -> Result<usize> {
+    let w = int_arg(name, v)?.max(0) as u64;
+    let w = usize::try_from(w).unwrap_or(usize::MAX);
+    crate::text::check_size(&format!("str.{name}() width"), w).map_err(|e| Error::python(e.to_string()))?;
+    Ok(w)
+}
+
 fn math_domain() -> Error {
     Error::python("ValueError: math domain error")
 }
@@ -611,8 +619,19 @@ fn simple_builtin(name: &str, args: Vec<Value>, kw: &[(String, Value)]) -> Resul
         }
         "chr" => {
             arity(name, &args, 1, 1)?;
-            let c = char::from_u32(int_arg(name, &args[0])? as u32)
-                .ok_or_else(|| Error::python("ValueError: chr() arg not in range"))?;
+            let i = int_arg(name, &args[0])?;
+            if i32::try_from(i).is_err() {
+                return Err(Error::python("OverflowError: Python int too large to convert to C int"));
+            }
+            let c = u32::try_from(i)
+                .ok()
+                .filter(|i| *i < 0x110000)
+                .ok_or_else(|| Error::python("ValueError: chr() arg not in range(0x110000)"))?;
+            let c = char::from_u32(c).ok_or_else(|| {
+                Error::python(format!(
+                    "ValueError: chr({i:#x}) is a surrogate code point, which this interpreter's strings cannot hold"
+                ))
+            })?;
             Ok(Value::str(&c.to_string()))
         }
         "ord" => {
@@ -1166,8 +1185,27 @@ fn str_method(s: &str, name: &str, args: &[Value]) -> Result<Value> {
         }
         "ljust" | "rjust" | "center" => {
             arity(name, args, 1, 2)?;
-            let w = int_arg(name, &args[0])?.max(0) as usize;
-            let fill = args.get(1).and_then(|v| v.as_str()).and_then(|f| f.chars().next()).unwrap_or(' ');
+            let w = width_arg(name, &args[0])?;
+            let fill = match args.get(1) {
+                None => ' ',
+                Some(Value::Str(f)) => {
+                    let mut cs = f.chars();
+                    match (cs.next(), cs.next()) {
+                        (Some(c), None) => c,
+                        _ => {
+                            return Err(Error::python(
+                                "TypeError: The fill character must be exactly one character long",
+                            ))
+                        }
+                    }
+                }
+                Some(f) => {
+                    return Err(Error::python(format!(
+                        "TypeError: The fill character must be a unicode character, not {}",
+                        f.type_name()
+                    )))
+                }
+            };
             let n = s.chars().count();
             if n >= w {
                 Value::str(s)
@@ -1186,7 +1224,7 @@ fn str_method(s: &str, name: &str, args: &[Value]) -> Result<Value> {
         }
         "zfill" => {
             arity(name, args, 1, 1)?;
-            let w = int_arg(name, &args[0])?.max(0) as usize;
+            let w = width_arg(name, &args[0])?;
             let n = s.chars().count();
             if n >= w {
                 Value::str(s)
@@ -1204,11 +1242,30 @@ fn str_method(s: &str, name: &str, args: &[Value]) -> Result<Value> {
 
 /// `str.format`.
 pub fn str_format(fmt: &str, args: &[Value], kw: &[(String, Value)]) -> Result<String> {
+    let mut numbering = Numbering { auto: 0, manual: None };
+    str_format_nested(fmt, args, kw, &mut numbering, 2)
+}
+
+/// The field numbering of one `str.format` call, shared by the fields nested in specs (`'{:{}}'`).
+struct Numbering {
+    auto: usize,
+    /// Automatic ({}) or manual ({0}) numbering, which may not be mixed.
+    manual: Option<bool>,
+}
+
+/// `str.format` of `fmt` with `depth` levels of nesting left (CPython allows one field in a spec).
+fn str_format_nested(
+    fmt: &str,
+    args: &[Value],
+    kw: &[(String, Value)],
+    numbering: &mut Numbering,
+    depth: usize,
+) -> Result<String> {
+    if depth == 0 {
+        return Err(Error::python("ValueError: Max string recursion exceeded"));
+    }
     let c: Vec<char> = fmt.chars().collect();
     let mut out = String::new();
-    let mut auto = 0usize;
-    // Automatic ({}) or manual ({0}) numbering, which may not be mixed.
-    let mut mode: Option<bool> = None;
     let mut i = 0;
     while i < c.len() {
         let ch = c[i];
@@ -1217,7 +1274,10 @@ pub fn str_format(fmt: &str, args: &[Value], kw: &[(String, Value)]) -> Result<S
             i += 2;
             continue;
         }
-        if ch == '}' && c.get(i + 1) == Some(&'}') {
+        if ch == '}' {
+            if c.get(i + 1) != Some(&'}') {
+                return Err(Error::python("ValueError: Single '}' encountered in format string"));
+            }
             out.push('}');
             i += 2;
             continue;
@@ -1228,17 +1288,21 @@ pub fn str_format(fmt: &str, args: &[Value], kw: &[(String, Value)]) -> Result<S
             continue;
         }
         let mut j = i + 1;
-        let mut depth = 0;
-        while j < c.len() && !(c[j] == '}' && depth == 0) {
+        let mut open = 0usize;
+        while j < c.len() && !(c[j] == '}' && open == 0) {
             if c[j] == '{' {
-                depth += 1;
+                open += 1;
             } else if c[j] == '}' {
-                depth -= 1;
+                open -= 1;
             }
             j += 1;
         }
         if j >= c.len() {
-            return Err(Error::python("ValueError: expected '}' before end of string"));
+            return Err(Error::python(if open > 0 {
+                "ValueError: unmatched '{' in format spec"
+            } else {
+                "ValueError: Single '{' encountered in format string"
+            }));
         }
         let field: String = c[i + 1..j].iter().collect();
         i = j + 1;
@@ -1247,40 +1311,48 @@ pub fn str_format(fmt: &str, args: &[Value], kw: &[(String, Value)]) -> Result<S
             None => (field.clone(), String::new()),
         };
         let (fname, conv) = match name_conv.find('!') {
-            Some(p) => (name_conv[..p].to_string(), name_conv[p + 1..].chars().next()),
+            Some(p) => {
+                let mut cs = name_conv[p + 1..].chars();
+                let conv = cs.next().ok_or_else(|| Error::python("ValueError: unmatched '{' in format spec"))?;
+                if cs.next().is_some() {
+                    return Err(Error::python("ValueError: expected ':' after conversion specifier"));
+                }
+                (name_conv[..p].to_string(), Some(conv))
+            }
             None => (name_conv, None),
         };
-        // Nested replacement fields in the spec ("{:{w}}").
-        let spec = if spec.contains('{') { str_format(&spec, args, kw)? } else { spec };
         let (head, rest) = match fname.find(['.', '[']) {
             Some(p) => (&fname[..p], &fname[p..]),
             None => (fname.as_str(), ""),
         };
-        let numbering = if head.is_empty() {
-            Some(true)
-        } else if head.parse::<usize>().is_ok() {
-            Some(false)
+        let index = if !head.is_empty() && head.chars().all(|c| c.is_ascii_digit()) {
+            Some(
+                head.parse::<usize>()
+                    .map_err(|_| Error::python("ValueError: Too many decimal digits in format string"))?,
+            )
         } else {
             None
         };
-        match (numbering, mode) {
+        let manual = if head.is_empty() { Some(false) } else { index.map(|_| true) };
+        match (manual, numbering.manual) {
             (Some(a), Some(m)) if a != m => {
                 return Err(Error::python("ValueError: cannot switch between automatic and manual field numbering"))
             }
-            (Some(a), _) => mode = Some(a),
+            (Some(a), _) => numbering.manual = Some(a),
             _ => {}
         }
         let mut v = if head.is_empty() {
-            let v =
-                args.get(auto).cloned().ok_or_else(|| Error::python("IndexError: Replacement index out of range"))?;
-            auto += 1;
-            v
-        } else if let Ok(n) = head.parse::<usize>() {
-            args.get(n)
-                .cloned()
-                .ok_or_else(|| Error::python(format!("IndexError: Replacement index {n} out of range")))?
+            let n = numbering.auto;
+            numbering.auto += 1;
+            args.get(n).cloned().ok_or_else(|| {
+                Error::python(format!("IndexError: Replacement index {n} out of range for positional args tuple"))
+            })?
+        } else if let Some(n) = index {
+            args.get(n).cloned().ok_or_else(|| {
+                Error::python(format!("IndexError: Replacement index {n} out of range for positional args tuple"))
+            })?
         } else {
-            kwarg(kw, head).cloned().ok_or_else(|| Error::python(format!("KeyError: '{head}'")))?
+            kwarg(kw, head).cloned().ok_or_else(|| Error::python(format!("KeyError: {}", format::str_repr(head))))?
         };
         let mut r = rest;
         while let Some(stripped) = r.strip_prefix('[') {
@@ -1296,10 +1368,15 @@ pub fn str_format(fmt: &str, args: &[Value], kw: &[(String, Value)]) -> Result<S
         if !r.is_empty() {
             return Err(Error::python(format!("attribute access '{r}' in format fields is not supported")));
         }
+        // Nested replacement fields in the spec ("{:{w}}"), numbered after the field's own.
+        let spec =
+            if spec.contains(['{', '}']) { str_format_nested(&spec, args, kw, numbering, depth - 1)? } else { spec };
         let v = match conv {
+            None => v,
             Some('r') => Value::str(&format::repr(&v)),
             Some('s') => Value::str(&to_str(&v)),
-            _ => v,
+            Some('a') => Value::str(&crate::text::ascii(&format::repr(&v))),
+            Some(c) => return Err(Error::python(format!("ValueError: Unknown conversion specifier {c}"))),
         };
         out.push_str(&format::format_value(&v, &spec)?);
     }

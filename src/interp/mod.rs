@@ -12,7 +12,7 @@ pub mod value;
 use crate::concepts::ConceptRef;
 use crate::diag::{Error, Result};
 use crate::syntax::ast::*;
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::collections::{HashMap, HashSet};
 use std::rc::Rc;
 pub use value::{Builtin, Dict, Scope, Value};
@@ -133,13 +133,27 @@ pub struct Interp<'h> {
     host: Option<&'h mut dyn Host>,
     frames: Vec<Frame>,
     depth: usize,
+    /// Where the statement being executed is, for whoever runs the interpreter (see [`Interp::track`]).
+    position: Option<Rc<Cell<Span>>>,
+    /// Statements and loop iterations executed, to check the run's deadline every `TICKS_PER_CHECK`.
+    ticks: u32,
 }
+
+/// The interpreter reads the clock (for the run's deadline) once per this many statements and
+/// loop iterations: a few microseconds apart.
+const TICKS_PER_CHECK: u32 = 256;
 
 const MAX_DEPTH: usize = 200;
 
 impl<'h> Interp<'h> {
     pub fn new(globals: Scope, host: Option<&'h mut dyn Host>) -> Self {
-        Interp { globals, host, frames: Vec::new(), depth: 0 }
+        Interp { globals, host, frames: Vec::new(), depth: 0, position: None, ticks: 0 }
+    }
+
+    /// Keep `at` set to the span of the statement being executed, so that the runner can locate
+    /// what it was doing if the interpreter stops by a panic.
+    pub fn track(&mut self, at: Rc<Cell<Span>>) {
+        self.position = Some(at);
     }
 
     /// Execute a whole module at top level.
@@ -151,12 +165,25 @@ impl<'h> Interp<'h> {
         }
     }
 
+    /// Count a statement or a loop iteration; past the run's deadline, stop (`diag::check_deadline`).
+    fn tick(&mut self) -> Result<()> {
+        self.ticks = self.ticks.wrapping_add(1);
+        if self.ticks.is_multiple_of(TICKS_PER_CHECK) {
+            crate::diag::check_deadline()?;
+        }
+        Ok(())
+    }
+
     fn finished(&self) -> bool {
         self.host.as_ref().map(|h| h.finished()).unwrap_or(false)
     }
 
     fn exec_block(&mut self, body: &[Stmt]) -> Result<Flow> {
         for s in body {
+            if let Some(p) = &self.position {
+                p.set(s.span);
+            }
+            self.tick().map_err(|e| e.at(s.span))?;
             let flow = self.exec(s).map_err(|e| e.at(s.span))?;
             if !matches!(flow, Flow::Normal) {
                 return Ok(flow);
@@ -214,6 +241,7 @@ impl<'h> Interp<'h> {
             StmtKind::For { target, iter, body, orelse } => {
                 let items = self.eval(iter)?.iter_items().map_err(|e| e.at(iter.span))?;
                 for item in items {
+                    self.tick()?;
                     self.assign(target, item)?;
                     match self.exec_block(body)? {
                         Flow::Break => return Ok(Flow::Normal),
@@ -226,6 +254,7 @@ impl<'h> Interp<'h> {
             StmtKind::While { cond, body, orelse } => {
                 let mut guard: u64 = 0;
                 while self.eval(cond)?.truthy()? {
+                    self.tick()?;
                     guard += 1;
                     if guard > 100_000_000 {
                         return Err(Error::python("while loop did not terminate after 1e8 iterations"));
@@ -541,7 +570,8 @@ impl<'h> Interp<'h> {
                 FPart::Field { expr, conv, spec } => {
                     let v = self.eval(expr)?;
                     let v = match conv {
-                        Some('r') | Some('a') => Value::str(&format::repr(&v)),
+                        Some('r') => Value::str(&format::repr(&v)),
+                        Some('a') => Value::str(&crate::text::ascii(&format::repr(&v))),
                         Some('s') => Value::str(&format::to_str(&v)),
                         _ => v,
                     };
@@ -592,6 +622,7 @@ impl<'h> Interp<'h> {
             None => self.eval(&c.iter)?.iter_items().map_err(|e| e.at(c.iter.span))?,
         };
         'outer: for item in items {
+            self.tick()?;
             self.assign(&c.target, item)?;
             for cond in &c.conds {
                 if !self.eval(cond)?.truthy()? {

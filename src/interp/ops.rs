@@ -173,8 +173,18 @@ fn complex_or_sequence(op: BinOp, a: &Value, b: &Value) -> Result<Value> {
 
 fn repeat(seq: &Value, n: i64) -> Result<Value> {
     let n = n.max(0) as usize;
-    if n > 10_000_000 {
-        return Err(Error::python("MemoryError: repetition too large"));
+    let len = match seq {
+        Value::Str(s) => s.len(),
+        Value::List(l) => l.borrow().len(),
+        Value::Tuple(t) => t.len(),
+        _ => 0,
+    };
+    // The result's size, not only the count: `[0] * 1000 * 10**7` would ask for 10^10 items.
+    if len.checked_mul(n).is_none_or(|total| total > crate::text::MAX_WIDTH) {
+        return Err(Error::python(format!(
+            "MemoryError: repetition too large ({len} x {n} exceeds the limit of {} items)",
+            crate::text::MAX_WIDTH
+        )));
     }
     Ok(match seq {
         Value::Str(s) => Value::str(&s.repeat(n)),

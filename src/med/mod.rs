@@ -14,8 +14,8 @@
 //! Coordinates, connectivities and field values are stored non-interlaced
 //! (all first components, then all second components, ...). Node numbers in
 //! connectivities are 1-based. Node and cell numbering follows Code_Aster:
-//! nodes in file order, cells type by type in increasing MED geometry code
-//! (see [`types::MED_TYPES`]), file order within a type. Unnamed entities get
+//! nodes in file order, cells type by type in Code_Aster's type order
+//! (see [`types::MedType::rank`]), file order within a type. Unnamed entities get
 //! Code_Aster's default names `N1, N2, ...` / `M1, M2, ...`.
 
 pub mod diff;

@@ -206,7 +206,7 @@ pub fn read_mesh(path: &Path, mesh_name: Option<&str>) -> Result<Mesh> {
         return Err(ioerr(path, format!("mesh '{name}': node family array has a bad size")));
     }
 
-    // Cells, type by type in MED geometry-code order.
+    // Cells, type by type in Code_Aster's reading order (MedType::rank).
     let mut by_type: Vec<(&'static MedType, Group)> = Vec::new();
     if step.link_exists("MAI") {
         let mai = step.group("MAI").map_err(|e| h5err(path, &format!("mesh '{name}' cells"), e))?;
@@ -218,7 +218,7 @@ pub fn read_mesh(path: &Path, mesh_name: Option<&str>) -> Result<Mesh> {
             by_type.push((mt, g));
         }
     }
-    by_type.sort_by_key(|(mt, _)| mt.geo);
+    by_type.sort_by_key(|(mt, _)| MedType::rank(mt.cell));
 
     let mut mesh = Mesh { dim: esp, coords, node_names, named_nodes, ..Mesh::default() };
     let mut cell_fam: Vec<i64> = Vec::new();

@@ -7,8 +7,12 @@
 //! Sources of the facts (not of code): Code_Aster's `lrmtyp` (table
 //! `numnoa`: "node j of the Code_Aster cell is node k of the MED cell", and
 //! its inverse `nuanom`) and the MED-fichier geometry codes (`MED_HEXA20 =
-//! 320`, ...). Code_Aster reads cell types in increasing MED geometry code,
-//! which is the order of [`MED_TYPES`].
+//! 320`, ...). Code_Aster 2025's LIRE_MAILLAGE (`MeshReader`) numbers cells
+//! type by type in its own type order (POI1, SEG2, SEG3, TRIA3, TRIA6, QUAD4,
+//! QUAD8, QUAD9, TETRA4, TETRA10, PENTA6, PENTA15, PYRAM5, PYRAM13, HEXA8,
+//! HEXA20, HEXA27: the order of [`CellType::ALL`]), not in MED geometry code
+//! order (TETRA4, PYRAM5, PENTA6, HEXA8, TETRA10, ...) as the 2020 reader
+//! (`lrmtyp`'s `renumd`) did: see [`MedType::rank`].
 
 use crate::mesh::CellType;
 
@@ -40,8 +44,7 @@ const fn t(cell: CellType, med_name: &'static str, geo: i32, aster_from_med: Opt
     MedType { cell, med_name, geo, aster_from_med }
 }
 
-/// All supported MED cell types, in increasing geometry code: the order in
-/// which Code_Aster numbers cells (type by type, file order within a type).
+/// All supported MED cell types, in increasing geometry code.
 pub const MED_TYPES: [MedType; 17] = [
     t(CellType::Poi1, "PO1", 1, None),
     t(CellType::Seg2, "SE2", 102, None),
@@ -75,9 +78,10 @@ impl MedType {
         MED_TYPES.iter().find(|m| m.cell == cell).expect("every CellType has a MED type")
     }
 
-    /// Position of the type in Code_Aster's reading order.
+    /// Position of the type in Code_Aster 2025's reading order: cells are numbered type by type in
+    /// this order, file order within a type.
     pub fn rank(cell: CellType) -> usize {
-        MED_TYPES.iter().position(|m| m.cell == cell).expect("every CellType has a MED type")
+        CellType::ALL.iter().position(|&c| c == cell).expect("CellType::ALL lists every type")
     }
 
     pub fn nnodes(&self) -> usize {
@@ -192,6 +196,18 @@ mod tests {
             let inv = MedType::of(cell).med_from_aster();
             let expected: Vec<usize> = nuanom.iter().map(|j| j - 1).collect();
             assert_eq!(inv, expected, "{cell:?}");
+        }
+    }
+
+    #[test]
+    fn cells_are_read_in_code_aster_type_order_not_geometry_code_order() {
+        // MeshReader's asterTypeList: 3D linear types TETRA4, PENTA6, PYRAM5, HEXA8, quadratic after linear
+        // per family; MED codes would put PYRAM5 (305) before PENTA6 (306) and HEXA8 (308) before TETRA10.
+        use CellType::*;
+        let order = [Poi1, Seg2, Seg3, Tria3, Tria6, Quad4, Quad8, Quad9, Tetra4, Tetra10, Penta6, Penta15];
+        let order: Vec<CellType> = order.into_iter().chain([Pyram5, Pyram13, Hexa8, Hexa20, Hexa27]).collect();
+        for (i, c) in order.iter().enumerate() {
+            assert_eq!(MedType::rank(*c), i, "{c:?}");
         }
     }
 

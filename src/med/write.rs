@@ -248,7 +248,7 @@ fn write_mesh_into(path: &Path, file: &hdf5::File, mesh: &Mesh, name: &str) -> R
     let nums: Vec<i32> = (1..=to_i32(path, nn)?).collect();
     put_ds(path, &noe, "NUM", &nums, nn)?;
 
-    // Cells, in Code_Aster's order: by MED geometry code, stable within a type.
+    // Cells, in Code_Aster's order: by type in its reading order, stable within a type.
     let (cell_fam, cell_fams) = families(path, mesh.cells.len(), &mesh.cell_groups, -1, "cell")?;
     let mut order: Vec<usize> = (0..mesh.cells.len()).collect();
     order.sort_by_key(|&i| MedType::rank(mesh.cell_types[i]));

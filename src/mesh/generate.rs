@@ -114,6 +114,48 @@ pub fn box_mesh(cell: CellType, n: &[usize], size: &[f64]) -> Result<Mesh> {
     Ok(mesh)
 }
 
+/// A quarter of a thick ring (2D) or of a thick-walled cylinder (3D): the box of `n` cells on
+/// `[0, RE − RI] × [0, π/2] (× [0, H])` mapped by `(s, θ, z) ↦ ((RI + s) cos θ, (RI + s) sin θ, z)`,
+/// so that every node, mid-edge nodes included, lies on its circle (quadratic cells follow the arcs).
+/// `n` = (radial, circumferential[, axial]) cells. The map keeps the orientation, and the groups are
+/// the box's renamed: `INT` (r = RI), `EXT` (r = RE), `BAS` (y = 0), `GAUCHE` (x = 0), `SURFACE` in
+/// 2D; `ZMIN`, `ZMAX` and `VOLUME` as in the box in 3D.
+pub fn ring_mesh(cell: CellType, n: &[usize], radii: [f64; 2], height: Option<f64>) -> Result<Mesh> {
+    let [ri, re] = radii;
+    if !(ri.is_finite() && re.is_finite() && ri > 0.0 && re > ri) {
+        return Err(Error::runtime("ring radii: expected 0 < RI < RE"));
+    }
+    let mut size = vec![re - ri, std::f64::consts::FRAC_PI_2];
+    if cell.dim() == 3 {
+        size.push(height.ok_or_else(|| Error::runtime("a 3D ring needs a height"))?);
+    } else if height.is_some() {
+        return Err(Error::runtime("a height applies to 3D rings (HEXA8, HEXA20) only"));
+    }
+    let mut m = box_mesh(cell, n, &size)?;
+    for c in m.coords.iter_mut() {
+        let (r, t) = (ri + c[0], c[1]);
+        // Exact zeros on the cut planes (cos π/2 is 6e-17 in floating point).
+        let (cs, sn) = if t == std::f64::consts::FRAC_PI_2 { (0.0, 1.0) } else { (t.cos(), t.sin()) };
+        c[0] = r * cs;
+        c[1] = r * sn;
+    }
+    let names: &[(&str, &str)] = if m.dim == 2 {
+        &[("GAUCHE", "INT"), ("DROITE", "EXT"), ("HAUT", "GAUCHE")]
+    } else {
+        &[("XMIN", "INT"), ("XMAX", "EXT"), ("YMIN", "BAS"), ("YMAX", "GAUCHE")]
+    };
+    // Renamed together (GAUCHE is both an old and a new name in 2D).
+    for groups in [&mut m.cell_groups, &mut m.node_groups] {
+        let taken: Vec<(String, Vec<usize>)> =
+            names.iter().filter_map(|(old, _)| groups.remove(*old).map(|v| (old.to_string(), v))).collect();
+        for (old, v) in taken {
+            let new = names.iter().find(|(o, _)| *o == old).unwrap().1;
+            groups.insert(new.to_string(), v);
+        }
+    }
+    Ok(m)
+}
+
 /// Add a cell to the mesh and to a cell group; its nodes to a node group.
 fn push_cell(mesh: &mut Mesh, t: CellType, nodes: Vec<usize>, group: &str, with_nodes: bool) {
     let idx = mesh.cells.len();

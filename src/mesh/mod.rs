@@ -3,6 +3,8 @@
 //! Cells are stored with their nodes in Code_Aster's local order; converting
 //! from and to other orders (MED) is the job of the format layer alone.
 
+pub mod convert;
+pub mod derive;
 pub mod generate;
 
 use std::collections::BTreeMap;

@@ -6,6 +6,17 @@
 
 use crate::diag::{Error, Result};
 use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+/// A time limit in seconds (`60`, `0.5`): positive and finite, else a message saying why not.
+pub fn parse_seconds(text: &str) -> std::result::Result<Duration, String> {
+    match text.trim().parse::<f64>() {
+        Ok(s) if s > 0.0 => {
+            Duration::try_from_secs_f64(s).map_err(|_| format!("'{text}' is too large a number of seconds"))
+        }
+        _ => Err(format!("'{text}' is not a positive number of seconds")),
+    }
+}
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Dir {
@@ -31,6 +42,13 @@ pub struct Export {
 impl Export {
     pub fn param(&self, key: &str) -> Option<&str> {
         self.params.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str())
+    }
+
+    /// `P time_limit SECONDS`, if given; an error if it is not a positive number of seconds.
+    pub fn time_limit(&self) -> Result<Option<Duration>> {
+        self.param("time_limit")
+            .map(|t| parse_seconds(t).map_err(|e| Error::io(format!("P time_limit {e}"))))
+            .transpose()
     }
 
     /// A validation case ignores NON_REGRESSION checks (`P testlist ... validation`).
@@ -109,6 +127,11 @@ mod tests {
         )
         .unwrap();
         assert_eq!(ex.param("time_limit"), Some("60"));
+        assert_eq!(ex.time_limit().unwrap(), Some(Duration::from_secs(60)));
+        for bad in ["0", "-1", "nan", "inf", "1e300", "soon"] {
+            let e = Export::parse(&format!("P time_limit {bad}\n"), Path::new("."), "e").unwrap();
+            assert!(e.time_limit().is_err(), "{bad}");
+        }
         assert!(!ex.is_validation());
         assert_eq!(ex.comm_files().len(), 1);
         assert_eq!(ex.files[1].path, Path::new("/x/t.31"));

@@ -1,20 +1,24 @@
 //! Running cases: a command file with its units, as `aster run`, `aster
 //! check` and `aster suite` do, with Code_Aster's diagnostics.
 
+pub mod diagnostic;
 pub mod export;
+pub mod guard;
 pub mod session;
 pub mod suite;
 
-use crate::diag::{Error, ErrorKind};
+use crate::diag::{with_deadline, Deadline, Error, ErrorKind};
 use crate::interp::Interp;
 use crate::stages::CheckRecord;
+use crate::syntax::ast::Span;
+pub use diagnostic::Diagnostic;
 use export::{Dir, Export};
-use session::{decode, diagnostic_for, write_atomic, Mode, Session, Timing, WorkDir};
-use std::cell::RefCell;
+use session::{decode, write_atomic, Mode, Session, Timing, WorkDir};
+use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::rc::Rc;
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 /// Options of `aster run`.
 #[derive(Debug, Clone, Default)]
@@ -31,11 +35,12 @@ pub struct RunOptions {
 #[derive(Debug, Clone)]
 pub struct Outcome {
     pub name: String,
-    /// OK, NOOK_TEST_RESU, NO_TEST_RESU, <F>_ERROR, <F>_SYNTAX_ERROR.
-    pub diagnostic: String,
+    pub diagnostic: Diagnostic,
     pub records: Vec<CheckRecord>,
     /// The located error message, if the run stopped on one.
     pub error: Option<String>,
+    /// The kind of that error (`Internal` for a caught panic).
+    pub error_kind: Option<ErrorKind>,
     pub mess: Option<PathBuf>,
     pub seconds: f64,
     pub timings: Vec<Timing>,
@@ -53,18 +58,15 @@ impl Outcome {
     }
     /// The process exit code: 0 for OK (and for a run without checks).
     pub fn exit_code(&self) -> i32 {
-        match self.diagnostic.as_str() {
-            "OK" | "NO_TEST_RESU" => 0,
-            "NOOK_TEST_RESU" => 1,
-            _ => 2,
-        }
+        self.diagnostic.exit_code()
     }
-    fn failed(name: &str, diagnostic: &str, error: String) -> Outcome {
+    fn failed(name: &str, kind: ErrorKind, error: String) -> Outcome {
         Outcome {
             name: name.into(),
-            diagnostic: diagnostic.into(),
+            diagnostic: Diagnostic::of_error(kind),
             records: Vec::new(),
             error: Some(error),
+            error_kind: Some(kind),
             mess: None,
             seconds: 0.0,
             timings: Vec::new(),
@@ -76,21 +78,54 @@ fn stem(p: &Path) -> String {
     p.file_stem().and_then(|s| s.to_str()).unwrap_or("case").to_string()
 }
 
-/// Run the case described by an .export file.
+/// What `aster run` runs.
+#[derive(Debug, Clone, Copy)]
+pub enum Case<'a> {
+    /// The embedded demo scene ([`run_default`]).
+    Demo,
+    /// A case described by an .export file ([`run_export`]).
+    Export(&'a Path),
+    /// A command file with the units of [`RunOptions`] ([`run_comm`]).
+    Comm(&'a Path),
+}
+
+/// Run a case within a time limit: `time_limit`, else the .export's `P time_limit`, else none. Past
+/// it, the run stops with a located `<F> ... time limit of N s exceeded`.
+pub fn run(case: Case<'_>, opts: &RunOptions, time_limit: Option<Duration>) -> Outcome {
+    let start = Instant::now();
+    let within =
+        |limit: Option<Duration>, f: &dyn Fn() -> Outcome| with_deadline(limit.map(|l| Deadline::since(start, l)), f);
+    match case {
+        Case::Demo => within(time_limit, &|| run_default(opts)),
+        Case::Comm(p) => within(time_limit, &|| run_comm(p, opts)),
+        Case::Export(p) => {
+            let limit = match time_limit {
+                Some(l) => Some(l),
+                None => match Export::read(p).and_then(|e| e.time_limit()) {
+                    Ok(l) => l,
+                    Err(e) => return Outcome::failed(&stem(p), e.kind, e.msg),
+                },
+            };
+            within(limit, &|| run_export(p, opts))
+        }
+    }
+}
+
+/// Run the case described by an .export file (with no time limit: see [`run`]).
 pub fn run_export(path: &Path, opts: &RunOptions) -> Outcome {
     let name = stem(path);
     let ex = match Export::read(path) {
         Ok(e) => e,
-        Err(e) => return Outcome::failed(&name, "<F>_ERROR", e.msg),
+        Err(e) => return Outcome::failed(&name, e.kind, e.msg),
     };
     let comms = ex.comm_files();
     let comm = match comms.as_slice() {
         [one] => one.path.clone(),
-        [] => return Outcome::failed(&name, "<F>_ERROR", format!("{}: no 'F comm FILE D 1' line", path.display())),
+        [] => return Outcome::failed(&name, ErrorKind::Io, format!("{}: no 'F comm FILE D 1' line", path.display())),
         _ => {
             return Outcome::failed(
                 &name,
-                "<F>_ERROR",
+                ErrorKind::Unsupported,
                 format!("{}: several command files (POURSUITE) are not supported yet", path.display()),
             )
         }
@@ -117,7 +152,7 @@ fn run_file(
 ) -> Outcome {
     let bytes = match std::fs::read(comm) {
         Ok(b) => b,
-        Err(e) => return Outcome::failed(name, "<F>_ERROR", format!("{}: {e}", comm.display())),
+        Err(e) => return Outcome::failed(name, ErrorKind::Io, format!("{}: {e}", comm.display())),
     };
     let file = comm.file_name().and_then(|f| f.to_str()).unwrap_or("?").to_string();
     run_text(&file, &decode(&bytes), name, units, mess_path, validation, opts)
@@ -138,7 +173,7 @@ pub fn run_default(opts: &RunOptions) -> Outcome {
     let dir = std::env::temp_dir().join(format!("aster-rs-default-{}", std::process::id()));
     let mesh = dir.join(DEFAULT_MESH.0);
     if let Err(e) = std::fs::create_dir_all(&dir).and_then(|_| std::fs::write(&mesh, DEFAULT_MESH.1)) {
-        return Outcome::failed(name, "<F>_ERROR", format!("cannot write the default mesh {}: {e}", mesh.display()));
+        return Outcome::failed(name, ErrorKind::Io, format!("cannot write the default mesh {}: {e}", mesh.display()));
     }
     let mut units = opts.units.clone();
     if !units.iter().any(|(u, ..)| *u == 20) {
@@ -169,12 +204,12 @@ fn run_text(
     // Input units must exist before anything runs.
     for (u, p, d) in &units {
         if *d != Dir::Out && !p.exists() {
-            return Outcome::failed(name, "<F>_ERROR", format!("unit {u}: data file {} does not exist", p.display()));
+            return Outcome::failed(name, ErrorKind::Io, format!("unit {u}: data file {} does not exist", p.display()));
         }
     }
     let work = match WorkDir::new() {
         Ok(w) => w,
-        Err(e) => return Outcome::failed(name, "<F>_ERROR", e.msg),
+        Err(e) => return Outcome::failed(name, e.kind, e.msg),
     };
     let file = file.to_string();
     let src = src.to_string();
@@ -184,16 +219,21 @@ fn run_text(
     session.echo = opts.echo;
     session.validation = validation;
 
-    let result = crate::syntax::parse_module(&src)
-        .map_err(|e| {
-            let mut err = Error::new(ErrorKind::Syntax, e.message);
-            err.span = Some(crate::syntax::ast::Span { start: e.offset, end: e.offset });
-            err
-        })
-        .and_then(|module| {
-            let mut it = Interp::new(globals.clone(), Some(&mut session));
-            it.run(&module)
-        });
+    let at = Rc::new(Cell::new(Span::default()));
+    let result = guard::catch(|| {
+        crate::syntax::parse_module(&src)
+            .map_err(|e| {
+                let mut err = Error::new(ErrorKind::Syntax, e.message);
+                err.span = Some(Span { start: e.offset, end: e.offset });
+                err
+            })
+            .and_then(|module| {
+                let mut it = Interp::new(globals.clone(), Some(&mut session));
+                it.track(at.clone());
+                it.run(&module)
+            })
+    })
+    .unwrap_or_else(|panic| Err(Error::internal(&panic).at(at.get())));
     let (diagnostic, error) = match &result {
         Err(e) => {
             let located = e.located(&file, &src);
@@ -201,17 +241,17 @@ fn run_text(
             if opts.echo {
                 println!("\n <F> {located}");
             }
-            (diagnostic_for(e.kind).to_string(), Some(located))
+            (Diagnostic::of_error(e.kind), Some(located))
         }
         Ok(()) => {
             let d = if session.records.iter().any(|r| r.ok == Some(false)) {
-                "NOOK_TEST_RESU"
+                Diagnostic::NookTestResu
             } else if session.records.iter().any(|r| r.ok == Some(true)) {
-                "OK"
+                Diagnostic::Ok
             } else {
-                "NO_TEST_RESU"
+                Diagnostic::NoTestResu
             };
-            (d.to_string(), None)
+            (d, None)
         }
     };
     // Results are delivered only from runs that did not stop on an error.
@@ -247,6 +287,7 @@ fn run_text(
         diagnostic,
         records: session.records.clone(),
         error,
+        error_kind: result.err().map(|e| e.kind),
         mess: written,
         seconds: t0.elapsed().as_secs_f64(),
         timings: session.timings.clone(),
@@ -259,17 +300,22 @@ pub fn check_file(path: &Path) -> Result<usize, (String, ErrorKind)> {
     let bytes = std::fs::read(path).map_err(|e| (format!("{}: {e}", path.display()), ErrorKind::Io))?;
     let src = decode(&bytes);
     let file = path.file_name().and_then(|f| f.to_str()).unwrap_or("?").to_string();
-    let module = crate::syntax::parse_module(&src).map_err(|e| {
-        let (l, c) = crate::syntax::lexer::line_col(&src, e.offset);
-        (format!("{file}:{l}:{c}: {}", e.message), ErrorKind::Syntax)
-    })?;
+    let module = guard::catch(|| crate::syntax::parse_module(&src))
+        .map_err(|panic| (Error::internal(&panic).located(&file, &src), ErrorKind::Internal))?
+        .map_err(|e| {
+            let (l, c) = crate::syntax::lexer::line_col(&src, e.offset);
+            (format!("{file}:{l}:{c}: {}", e.message), ErrorKind::Syntax)
+        })?;
     let globals = Rc::new(RefCell::new(HashMap::new()));
     let work = std::env::temp_dir();
     let mut session = Session::new(Mode::Check, &file, &src, globals.clone(), work);
-    let r = {
+    let at = Rc::new(Cell::new(Span::default()));
+    let r = guard::catch(|| {
         let mut it = Interp::new(globals, Some(&mut session));
+        it.track(at.clone());
         it.run(&module)
-    };
+    })
+    .unwrap_or_else(|panic| Err(Error::internal(&panic).at(at.get())));
     match r {
         Ok(()) => Ok(session.ncommands()),
         Err(e) => Err((e.located(&file, &src), e.kind)),

@@ -7,7 +7,7 @@ use crate::catalog::args::take_undeclared_lookups;
 use crate::catalog::schema::Produces;
 use crate::catalog::{catalogue, validate};
 use crate::concepts::{Concept, ConceptData};
-use crate::diag::{Error, ErrorKind, Result};
+use crate::diag::{Error, Result};
 use crate::interp::{Host, KwArg, Scope, Value};
 use crate::stages::{self, CheckRecord, Ctx, StageIo};
 use crate::syntax::ast::Span;
@@ -49,6 +49,8 @@ pub struct Session {
     pub validation: bool,
     finished: bool,
     ncommands: usize,
+    /// The test hook `ASTER_INJECT_PANIC`: the command whose stage panics (see `guard`).
+    inject_panic: Option<String>,
 }
 
 impl Session {
@@ -69,6 +71,7 @@ impl Session {
             validation: false,
             finished: false,
             ncommands: 0,
+            inject_panic: super::guard::injected_panic(),
         }
     }
 
@@ -158,9 +161,13 @@ impl Session {
         };
         let line = self.line_of(span);
         let globals = self.globals.clone();
+        let inject_panic = self.inject_panic.as_deref() == Some(name);
         let mut ctx = Ctx { io: self, globals, command: name, line };
         args.reset_reads();
         take_undeclared_lookups();
+        if inject_panic {
+            panic!("panic injected in {name} by ASTER_INJECT_PANIC (a test hook)");
+        }
         let data = stage(&mut ctx, &args).map_err(|e| e.at(span).in_command(name))?;
         stages::all_keywords_used(name, &args).map_err(|e| e.at(span).in_command(name))?;
         match (kind, data) {
@@ -201,8 +208,12 @@ impl Host for Session {
                 shown.lines().map(|l| format!("  {l}")).collect::<Vec<_>>().join("\n")
             ));
         }
+        // The run's time limit is checked between commands (and by the interpreter and long stages).
+        crate::diag::check_deadline().map_err(|e| e.at(span).in_command(name))?;
         let t0 = Instant::now();
-        let r = self.run_command(name, kwargs, span, target);
+        // A panic of the catalogue or of the stage (a bug of ours) stops the run as a located error.
+        let r = super::guard::catch(|| self.run_command(name, kwargs, span, target))
+            .unwrap_or_else(|panic| Err(Error::internal(&panic).at(span).in_command(name)));
         let dt = t0.elapsed().as_secs_f64();
         if self.mode == Mode::Run {
             self.timings.push(Timing { command: name.to_string(), line, seconds: dt });
@@ -348,14 +359,6 @@ pub fn write_atomic(path: &Path, data: &[u8]) -> Result<()> {
         let _ = std::fs::remove_file(&tmp);
         Error::io(format!("cannot write {}: {e}", path.display()))
     })
-}
-
-/// Errors worth naming the diagnostic after.
-pub fn diagnostic_for(kind: ErrorKind) -> &'static str {
-    match kind {
-        ErrorKind::Syntax | ErrorKind::Catalog => "<F>_SYNTAX_ERROR",
-        _ => "<F>_ERROR",
-    }
 }
 
 impl Session {

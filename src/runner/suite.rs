@@ -3,7 +3,7 @@
 //! row per case and a JUnit XML file.
 
 use super::export::Export;
-use super::Outcome;
+use super::{Diagnostic, Outcome};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::{Arc, Mutex};
@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 #[derive(Debug, Clone)]
 pub struct CaseResult {
     pub name: String,
-    pub diagnostic: String,
+    pub diagnostic: Diagnostic,
     pub ok: usize,
     pub nook: usize,
     pub skip: usize,
@@ -49,7 +49,7 @@ fn parse_summary(name: &str, text: &str) -> CaseResult {
     let get = |k: &str| text.lines().find_map(|l| l.strip_prefix(&format!("{k}="))).map(str::to_string);
     CaseResult {
         name: name.to_string(),
-        diagnostic: get("diagnostic").unwrap_or_else(|| "<F>_ERROR".into()),
+        diagnostic: get("diagnostic").and_then(|d| d.parse().ok()).unwrap_or(Diagnostic::Error),
         ok: get("ok").and_then(|v| v.parse().ok()).unwrap_or(0),
         nook: get("nook").and_then(|v| v.parse().ok()).unwrap_or(0),
         skip: get("skip").and_then(|v| v.parse().ok()).unwrap_or(0),
@@ -60,16 +60,19 @@ fn parse_summary(name: &str, text: &str) -> CaseResult {
 
 impl CaseResult {
     fn error(name: String, seconds: f64, msg: String) -> CaseResult {
-        CaseResult { name, diagnostic: "<F>_ERROR".into(), ok: 0, nook: 0, skip: 0, seconds, error: Some(msg) }
+        CaseResult { name, diagnostic: Diagnostic::Error, ok: 0, nook: 0, skip: 0, seconds, error: Some(msg) }
     }
 }
 
 fn run_one(exe: &Path, export: &Path, out: &Path) -> CaseResult {
     let name = export.file_stem().and_then(|s| s.to_str()).unwrap_or("?").to_string();
-    let limit = Export::read(export)
-        .ok()
-        .and_then(|e| e.param("time_limit").and_then(|t| t.parse::<f64>().ok()))
-        .unwrap_or(600.0);
+    // The case stops itself at its time limit with a located error (`aster run` reads the export's);
+    // past a grace period the suite kills it.
+    let limit = match Export::read(export).and_then(|e| e.time_limit()) {
+        Ok(l) => l.map_or(600.0, |l| l.as_secs_f64()),
+        Err(e) => return CaseResult::error(name, 0.0, e.msg),
+    };
+    let kill_after = limit + (0.1 * limit).max(2.0);
     let dir = out.join(&name);
     let _ = std::fs::create_dir_all(&dir);
     let summary = dir.join("summary.txt");
@@ -92,7 +95,7 @@ fn run_one(exe: &Path, export: &Path, out: &Path) -> CaseResult {
     loop {
         match child.try_wait() {
             Ok(Some(_)) => break,
-            Ok(None) if t0.elapsed().as_secs_f64() > limit => {
+            Ok(None) if t0.elapsed().as_secs_f64() > kill_after => {
                 let _ = child.kill();
                 let _ = child.wait();
                 return CaseResult::error(
@@ -154,7 +157,7 @@ pub fn table(results: &[CaseResult]) -> String {
             s.push_str(&format!("             {e}\n"));
         }
     }
-    let ok = results.iter().filter(|r| r.diagnostic == "OK").count();
+    let ok = results.iter().filter(|r| r.diagnostic == Diagnostic::Ok).count();
     s.push_str(&format!("{} cases: {ok} OK, {} not OK\n", results.len(), results.len() - ok));
     s
 }
@@ -165,8 +168,8 @@ fn xml_escape(s: &str) -> String {
 
 /// A JUnit XML report: a failure for NOOK, an error for <F> diagnostics.
 pub fn junit(results: &[CaseResult]) -> String {
-    let failures = results.iter().filter(|r| r.diagnostic == "NOOK_TEST_RESU").count();
-    let errors = results.iter().filter(|r| r.diagnostic.starts_with("<F>")).count();
+    let failures = results.iter().filter(|r| r.diagnostic == Diagnostic::NookTestResu).count();
+    let errors = results.iter().filter(|r| r.diagnostic.is_error()).count();
     let total: f64 = results.iter().map(|r| r.seconds).sum();
     let mut s = format!(
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuite name=\"aster-suite\" tests=\"{}\" failures=\"{failures}\" errors=\"{errors}\" time=\"{total:.3}\">\n",
@@ -179,10 +182,14 @@ pub fn junit(results: &[CaseResult]) -> String {
             r.seconds
         ));
         let msg = xml_escape(r.error.as_deref().unwrap_or(""));
-        match r.diagnostic.as_str() {
-            "OK" | "NO_TEST_RESU" => {}
-            "NOOK_TEST_RESU" => s.push_str(&format!("<failure message=\"NOOK_TEST_RESU: {} NOOK\"/>", r.nook)),
-            d => s.push_str(&format!("<error message=\"{}\">{msg}</error>", xml_escape(d))),
+        match r.diagnostic {
+            Diagnostic::Ok | Diagnostic::NoTestResu => {}
+            Diagnostic::NookTestResu => {
+                s.push_str(&format!("<failure message=\"{}: {} NOOK\"/>", Diagnostic::NookTestResu, r.nook))
+            }
+            d @ (Diagnostic::Error | Diagnostic::SyntaxError) => {
+                s.push_str(&format!("<error message=\"{}\">{msg}</error>", xml_escape(d.name())))
+            }
         }
         s.push_str("</testcase>\n");
     }

@@ -1,46 +1,78 @@
 //! Direct sparse solvers over faer.
 //!
-//! * Symmetric matrices: supernodal/simplicial LLᵀ (faer, AMD ordering) on
-//!   the Jacobi-scaled matrix `S A S` (`S = diag(A)^-1/2`, unit diagonal).
-//!   A pivot of the scaled matrix below `10^-NPREC` means that more than
-//!   `NPREC` significant digits were lost: the matrix is declared singular at
-//!   that dof, as Code_Aster does (`NPREC`, default 8). Such pivots are
-//!   regularised during the factorisation, so every singular dof is found in
-//!   one pass (e.g. the 3 / 6 rigid-body modes of a free structure).
-//! * Non-symmetric matrices: sparse LU with partial pivoting; singularity is
-//!   detected structurally (faer) or by a non-finite solution / a residual
-//!   above `resi_rela`.
+//! * Symmetric positive definite matrices: supernodal LLᵀ on the Jacobi-scaled matrix `S A S`
+//!   (`S = diag(A)^-1/2`, unit diagonal).
+//! * Symmetric indefinite matrices (the saddle points of multipliers): supernodal LDLᵀ without pivoting on
+//!   the equilibrated matrix (largest entry of every row and column 1), with the unknowns without a positive
+//!   diagonal (multipliers) ordered after their neighbours, as in a quasi-definite matrix, and iterative refinement against
+//!   the original matrix; when the refinement does not reach round-off the matrix is factorised again by LU.
+//! * Non-symmetric matrices: sparse LU with partial pivoting.
 //!
-//! Symbolic analysis, numeric factorisation and solve are timed separately.
+//! The fill-reducing ordering is AMD or nested dissection (METIS) by size ([`ordering`]); the symbolic
+//! analysis (ordering + elimination tree + supernodes) can be kept in an [`Analysis`] and reused while the
+//! pattern does not change (Newton iterations, time steps); the numeric factorisation and the solves run on
+//! `threads` threads.
+//!
+//! Precision (Code_Aster's `NPREC`): a pivot of the scaled matrix below `10^-NPREC` of its diagonal (of 1
+//! for a zero diagonal) means that more than `NPREC` digits were lost: the matrix is declared singular at
+//! that unknown. Such pivots are regularised during the factorisation, so every singular unknown is found
+//! in one pass. Every factorisation estimates the 1-norm condition number of the scaled matrix
+//! (Hager–Higham, from the factors) and reports the digits it costs. `RESI_RELA` bounds the relative
+//! residual `‖b − A x‖ / ‖b‖` after the solve.
 
+pub mod ordering;
 pub mod scaling;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::linalg::solvers::Solve;
+use faer::linalg::solvers::{Solve, SolveCore};
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, supernodal::SupernodalLltRef, LltRef, SymbolicCholesky, SymbolicCholeskyRaw,
+    factorize_symbolic_cholesky, supernodal::SupernodalLltRef, LdltRef, LltRef, SymbolicCholesky, SymbolicCholeskyRaw,
     SymmetricOrdering,
 };
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMat, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
+pub use ordering::Ordering;
 use std::fmt;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 /// Factorisation method.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
-    /// LLᵀ when the matrix is symmetric, LU otherwise.
+    /// LLᵀ when the matrix is symmetric with a positive diagonal, LDLᵀ when it is symmetric with zero or
+    /// negative diagonal entries, LU otherwise.
     Auto,
     Cholesky,
+    /// Symmetric indefinite LDLᵀ (refined; LU when the refinement fails).
+    Ldlt,
     Lu,
+}
+
+impl Method {
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Auto => "automatic",
+            Method::Cholesky => "LLT",
+            Method::Ldlt => "LDLT",
+            Method::Lu => "LU",
+        }
+    }
+}
+
+impl fmt::Display for Method {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 /// Solver settings (mapped from `SOLVEUR`).
 #[derive(Debug, Clone, Copy)]
 pub struct SolverOptions {
     pub method: Method,
+    pub ordering: Ordering,
     /// Digits of precision whose loss declares a pivot singular (`NPREC`).
     /// A negative value disables the check (as in Code_Aster).
     pub nprec: i32,
@@ -49,22 +81,62 @@ pub struct SolverOptions {
     pub resi_rela: f64,
     /// Relative tolerance of the symmetry test (Auto).
     pub sym_tol: f64,
+    /// Threads of the numeric factorisation and solves (0: every core).
+    pub threads: usize,
+    /// Largest number of iterative refinement steps after a solve.
+    pub refine_max: usize,
+    /// Estimate the condition number after each factorisation.
+    pub condition: bool,
 }
 
 impl Default for SolverOptions {
     fn default() -> Self {
-        SolverOptions { method: Method::Auto, nprec: 8, resi_rela: 1e-6, sym_tol: 1e-12 }
+        SolverOptions {
+            method: Method::Auto,
+            ordering: Ordering::Auto,
+            nprec: 8,
+            resi_rela: 1e-6,
+            sym_tol: 1e-12,
+            threads: 0,
+            refine_max: 10,
+            condition: true,
+        }
+    }
+}
+
+impl SolverOptions {
+    fn par(&self) -> Par {
+        let n = if self.threads == 0 {
+            std::thread::available_parallelism().map(|n| n.get()).unwrap_or(1)
+        } else {
+            self.threads
+        };
+        if n <= 1 {
+            Par::Seq
+        } else {
+            Par::rayon(n)
+        }
+    }
+
+    /// Number of threads a factorisation uses.
+    pub fn thread_count(&self) -> usize {
+        match self.par() {
+            Par::Seq => 1,
+            Par::Rayon(n) => n.get(),
+        }
     }
 }
 
 /// Timings of a solve.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Timings {
-    /// Ordering + symbolic factorisation.
+    /// Ordering + symbolic factorisation (zero when reused).
     pub symbolic: Duration,
     /// Numeric factorisation.
     pub factorization: Duration,
-    /// Triangular solves (+ residual).
+    /// Condition estimate (solves with the factors).
+    pub condition: Duration,
+    /// Triangular solves, refinement and residual.
     pub solve: Duration,
 }
 
@@ -85,7 +157,7 @@ pub enum SingularKind {
 #[derive(Debug, Clone, PartialEq)]
 pub enum SolveError {
     /// The matrix is singular; `dofs` are the (reduced) equations where it
-    /// shows, `pivots` the corresponding pivot values (scaled; NaN if n/a).
+    /// shows, worst first, `pivots` the corresponding relative pivots (NaN if n/a).
     Singular { kind: SingularKind, dofs: Vec<usize>, pivots: Vec<f64> },
     /// Cholesky requested on a non-symmetric matrix.
     NotSymmetric,
@@ -96,12 +168,22 @@ pub enum SolveError {
 impl fmt::Display for SolveError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            SolveError::Singular { kind, dofs, .. } => {
+            SolveError::Singular { kind, dofs, pivots } => {
                 let what = match kind {
                     SingularKind::NoStiffness => "dofs without stiffness".to_string(),
-                    SingularKind::Pivot => "pivots losing too many digits".to_string(),
+                    SingularKind::Pivot => {
+                        let worst = pivots.first().copied().unwrap_or(f64::NAN);
+                        if worst.is_finite() && worst > 0.0 {
+                            format!(
+                                "pivots losing more than NPREC digits, the worst {:.1} digits (relative pivot {worst:.1e})",
+                                -worst.log10()
+                            )
+                        } else {
+                            "pivots losing more than NPREC digits, the worst a null pivot".to_string()
+                        }
+                    }
                     SingularKind::Structural => "structurally singular".to_string(),
-                    SingularKind::Residual(r) => format!("solution residual {r:e}"),
+                    SingularKind::Residual(r) => format!("relative residual {r:.3e} above RESI_RELA"),
                 };
                 write!(f, "singular matrix ({what}) at equations {dofs:?}")
             }
@@ -113,17 +195,79 @@ impl fmt::Display for SolveError {
 
 impl std::error::Error for SolveError {}
 
+/// What a factorisation did: for the run log.
+#[derive(Debug, Clone, Default)]
+pub struct FactorInfo {
+    /// Method used (Cholesky, Ldlt or Lu).
+    pub method: Option<Method>,
+    /// Ordering used (none for LU, which orders its columns itself).
+    pub ordering: Option<Ordering>,
+    pub threads: usize,
+    pub n: usize,
+    /// Non-zeros of the factor(s) (0 when unknown).
+    pub factor_nnz: usize,
+    /// The symbolic analysis was reused from an earlier factorisation.
+    pub reused: bool,
+    /// Estimated 1-norm condition number of the scaled matrix.
+    pub condition: Option<f64>,
+    /// The unknown where the worst column of the inverse peaks (from the condition estimate).
+    pub sensitive: Option<usize>,
+    /// Smallest relative pivot of a symmetric factorisation.
+    pub min_pivot: Option<f64>,
+    /// The LDLᵀ fell back on LU (its refinement did not converge).
+    pub fallback: bool,
+    /// Pivots of the LDLᵀ below round-off, replaced by ±δ (the refinement then corrects the solution).
+    pub regularized: usize,
+    pub timings: Timings,
+}
+
+impl FactorInfo {
+    /// One line for the run log: method, ordering, threads, fill, condition and the digits it costs.
+    pub fn summary(&self) -> String {
+        let mut s = format!(
+            "{}{}",
+            self.method.map(|m| m.name()).unwrap_or("?"),
+            if self.fallback { " (LDLT refinement failed: LU)" } else { "" }
+        );
+        if let Some(o) = self.ordering {
+            s += &format!(", {} ordering{}", o.name(), if self.reused { " (analysis reused)" } else { "" });
+        }
+        s += &format!(", {} thread(s)", self.threads);
+        if self.factor_nnz > 0 {
+            s += &format!(", factor {:.1} M non-zeros", self.factor_nnz as f64 / 1e6);
+        }
+        if self.regularized > 0 {
+            s += &format!(", {} null pivot(s) regularised", self.regularized);
+        }
+        if let Some(c) = self.condition {
+            s += &format!(", condition estimate {c:.1e} ({:.1} digits lost)", c.max(1.0).log10());
+        }
+        let t = &self.timings;
+        s += &format!(
+            "; analysis {:.3} s, factorization {:.3} s, condition {:.3} s, solves {:.3} s",
+            t.symbolic.as_secs_f64(),
+            t.factorization.as_secs_f64(),
+            t.condition.as_secs_f64(),
+            t.solve.as_secs_f64()
+        );
+        s
+    }
+}
+
 /// Result of [`solve`].
 #[derive(Debug, Clone)]
 pub struct Solution {
     pub x: Vec<f64>,
-    /// Method actually used (Cholesky or Lu).
+    /// Method actually used (Cholesky, Ldlt or Lu).
     pub method: Method,
     pub timings: Timings,
     /// `‖b - A x‖ / ‖b‖` (0 for b = 0).
     pub residual: f64,
     /// Non-zeros of the factor(s).
     pub factor_nnz: usize,
+    /// Iterative refinement steps taken.
+    pub refinements: usize,
+    pub info: FactorInfo,
 }
 
 /// True when `a` is numerically symmetric within `tol · max|a|`.
@@ -179,95 +323,327 @@ pub fn matvec(a: SparseColMatRef<'_, usize, f64>, x: &[f64]) -> Vec<f64> {
     y
 }
 
+/// `r = b − A x`, each entry accumulated with its rounding error (Neumaier's compensated sum of
+/// exact products from `mul_add`), so that the residual of a solution accurate to round-off is itself
+/// accurate: iterative refinement then improves the solution, not only the residual.
+pub fn residual(a: SparseColMatRef<'_, usize, f64>, x: &[f64], b: &[f64]) -> Vec<f64> {
+    let (cp, ri, v) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+    let mut hi = b.to_vec();
+    let mut lo = vec![0.0; b.len()];
+    for j in 0..a.ncols() {
+        let xj = x[j];
+        if xj != 0.0 {
+            for p in cp[j]..cp[j + 1] {
+                let i = ri[p];
+                let prod = -v[p] * xj;
+                let err = (-v[p]).mul_add(xj, -prod);
+                let s = hi[i] + prod;
+                let c = if hi[i].abs() >= prod.abs() { (hi[i] - s) + prod } else { (prod - s) + hi[i] };
+                hi[i] = s;
+                lo[i] += c + err;
+            }
+        }
+    }
+    hi.iter().zip(&lo).map(|(h, l)| h + l).collect()
+}
+
+/// The normwise backward error of x in the metric of the scaling `s` (that of the factorization, under
+/// which every row and column has entries of order 1): `‖S r‖∞ / (‖S A S‖∞ ‖S⁻¹ x‖∞ + ‖S b‖∞)`, with
+/// `anorm = ‖S A S‖∞`. Unlike `‖r‖/‖b‖` it gives the small equations (a multiplier's, an interface's) their
+/// weight; unlike a componentwise error it does not count rows whose unknowns all vanish to round-off.
+fn backward_error(r: &[f64], x: &[f64], b: &[f64], s: &[f64], anorm: f64) -> f64 {
+    let inf = |it: &mut dyn Iterator<Item = f64>| it.fold(0.0f64, |m, v| m.max(v.abs()));
+    let nr = inf(&mut r.iter().zip(s).map(|(r, s)| r * s));
+    let nx = inf(&mut x.iter().zip(s).map(|(x, s)| x / s));
+    let nb = inf(&mut b.iter().zip(s).map(|(b, s)| b * s));
+    let d = anorm * nx + nb;
+    if d > 0.0 {
+        nr / d
+    } else if nr == 0.0 {
+        0.0
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// `‖S A S‖∞`.
+fn scaled_inf_norm(a: SparseColMatRef<'_, usize, f64>, s: &[f64]) -> f64 {
+    let (cp, ri, v) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+    let mut row = vec![0.0f64; a.nrows()];
+    for j in 0..a.ncols() {
+        for p in cp[j]..cp[j + 1] {
+            row[ri[p]] += (v[p] * s[ri[p]] * s[j]).abs();
+        }
+    }
+    row.into_iter().fold(0.0, f64::max)
+}
+
 fn norm(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
-fn relative_residual(a: SparseColMatRef<'_, usize, f64>, x: &[f64], b: &[f64]) -> f64 {
-    let ax = matvec(a, x);
-    let r: Vec<f64> = ax.iter().zip(b).map(|(p, q)| q - p).collect();
+fn relative(r: &[f64], b: &[f64]) -> f64 {
     let nb = norm(b);
+    let nr = norm(r);
     if nb == 0.0 {
-        if norm(&r) == 0.0 {
+        if nr == 0.0 {
             0.0
         } else {
             f64::INFINITY
         }
     } else {
-        norm(&r) / nb
+        nr / nb
     }
 }
 
-/// Value given to regularised pivots (recognised afterwards by their exact
-/// square root); any legitimate pivot equal to it bit for bit is harmless
-/// except for a spurious report.
+/// LDLᵀ pivots of at most this size (of the equilibrated matrix) are replaced by ±[`LDLT_DELTA`].
+const LDLT_NULL_PIVOT: f64 = 1e-13;
+const LDLT_DELTA: f64 = 1e-8;
+
+/// Value given to regularised pivots (recognised afterwards); any legitimate pivot equal to it bit for
+/// bit is harmless except for a spurious report.
 const SENTINEL_PIVOT: f64 = 0.618_033_988_749_894_8;
 
-/// A factorised matrix, reusable for several right-hand sides.
-pub enum Factorization {
-    Cholesky { symbolic: Box<SymbolicCholesky<usize>>, values: Vec<f64>, scale: Vec<f64> },
+/// The symbolic analysis of a symmetric pattern, kept to be reused while the pattern does not change.
+pub struct Analysis {
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    zero: Vec<bool>,
+    ordering: Ordering,
+    symbolic: Arc<SymbolicCholesky<usize>>,
+}
+
+impl Analysis {
+    fn matches(&self, a: SparseColMatRef<'_, usize, f64>, zero: &[bool], ordering: Ordering) -> bool {
+        self.ordering == ordering
+            && self.col_ptr == a.symbolic().col_ptr()
+            && self.row_idx == a.symbolic().row_idx()
+            && self.zero == zero
+    }
+}
+
+enum Kind {
+    Llt { symbolic: Arc<SymbolicCholesky<usize>>, values: Vec<f64> },
+    Ldlt { symbolic: Arc<SymbolicCholesky<usize>>, values: Vec<f64> },
     Lu(Box<Lu<usize, f64>>),
 }
 
+/// A factorised matrix `S A S = F` (S diagonal scaling), reusable for several right-hand sides.
+pub struct Factorization {
+    kind: Kind,
+    scale: Vec<f64>,
+    par: Par,
+    pub info: FactorInfo,
+}
+
 impl Factorization {
-    /// Solve `A x = b` with the factors.
-    pub fn solve(&self, b: &[f64]) -> Vec<f64> {
-        match self {
-            Factorization::Cholesky { symbolic, values, scale } => {
-                let mut y: Vec<f64> = b.iter().zip(scale).map(|(v, s)| v * s).collect();
-                let n = y.len();
-                let par = Par::Seq;
-                let llt = LltRef::new(symbolic, values);
-                let req = symbolic.solve_in_place_scratch::<f64>(1, par);
-                let mut buf = MemBuffer::new(req);
-                llt.solve_in_place_with_conj(
+    /// `y ← F⁻¹ y` (scaled system).
+    fn solve_scaled(&self, y: &mut [f64], transpose: bool) {
+        let n = y.len();
+        let rhs = MatMut::from_column_major_slice_mut(y, n, 1);
+        match &self.kind {
+            Kind::Llt { symbolic, values } => {
+                let mut buf = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, self.par));
+                LltRef::new(symbolic, values).solve_in_place_with_conj(
                     Conj::No,
-                    MatMut::from_column_major_slice_mut(&mut y, n, 1),
-                    par,
+                    rhs,
+                    self.par,
                     MemStack::new(&mut buf),
                 );
-                y.iter().zip(scale).map(|(v, s)| v * s).collect()
             }
-            Factorization::Lu(lu) => {
-                let mut y = b.to_vec();
-                let n = y.len();
-                lu.solve_in_place(MatMut::from_column_major_slice_mut(&mut y, n, 1));
-                y
+            Kind::Ldlt { symbolic, values } => {
+                let mut buf = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, self.par));
+                LdltRef::new(symbolic, values).solve_in_place_with_conj(
+                    Conj::No,
+                    rhs,
+                    self.par,
+                    MemStack::new(&mut buf),
+                );
+            }
+            Kind::Lu(lu) => {
+                if transpose {
+                    lu.solve_transpose_in_place_with_conj(Conj::No, rhs);
+                } else {
+                    lu.solve_in_place(rhs);
+                }
             }
         }
     }
+
+    /// Solve `A x = b` with the factors (one solve, no refinement).
+    pub fn solve(&self, b: &[f64]) -> Vec<f64> {
+        let mut y: Vec<f64> = b.iter().zip(&self.scale).map(|(v, s)| v * s).collect();
+        self.solve_scaled(&mut y, false);
+        y.iter().zip(&self.scale).map(|(v, s)| v * s).collect()
+    }
+
+    /// Solve `A x = b` and refine against `a` (the matrix that was factorised) until the backward error
+    /// (see [`backward_error`]) reaches round-off or stops halving; returns x, the relative residual `‖b − A x‖/‖b‖`
+    /// and the refinement steps.
+    pub fn solve_refined(
+        &self,
+        a: SparseColMatRef<'_, usize, f64>,
+        b: &[f64],
+        max_steps: usize,
+    ) -> (Vec<f64>, f64, usize) {
+        let (x, _, rel, steps) = self.refine(a, b, max_steps);
+        (x, rel, steps)
+    }
+
+    /// [`Self::solve_refined`] with the final backward error: (x, backward error, relative residual, steps).
+    fn refine(&self, a: SparseColMatRef<'_, usize, f64>, b: &[f64], max_steps: usize) -> (Vec<f64>, f64, f64, usize) {
+        let anorm = scaled_inf_norm(a, &self.scale);
+        let berr = |r: &[f64], x: &[f64]| backward_error(r, x, b, &self.scale, anorm);
+        let mut x = self.solve(b);
+        let mut r = residual(a, &x, b);
+        let mut w = berr(&r, &x);
+        let mut steps = 0;
+        while steps < max_steps && w > 2.0 * f64::EPSILON && w.is_finite() {
+            let dx = self.solve(&r);
+            let xn: Vec<f64> = x.iter().zip(&dx).map(|(p, q)| p + q).collect();
+            let rn = residual(a, &xn, b);
+            let wn = berr(&rn, &xn);
+            steps += 1;
+            if wn.is_nan() || wn >= w {
+                break;
+            }
+            let done = wn > 0.5 * w;
+            x = xn;
+            r = rn;
+            w = wn;
+            if done {
+                break;
+            }
+        }
+        let rel = relative(&r, b);
+        (x, w, rel, steps)
+    }
+
+    /// Hager–Higham estimate of ‖F⁻¹‖₁ (at most 5 iterations, plus Higham's alternative vector), and the
+    /// unknown where the column of F⁻¹ that gives it peaks (the worst conditioned unknown).
+    fn inverse_norm1(&self) -> (f64, usize) {
+        let n = self.scale.len();
+        if n == 0 {
+            return (0.0, 0);
+        }
+        let norm1 = |v: &[f64]| v.iter().map(|x| x.abs()).sum::<f64>();
+        let sign = |v: &[f64]| v.iter().map(|&x| if x >= 0.0 { 1.0 } else { -1.0 }).collect::<Vec<f64>>();
+        let argmax = |v: &[f64]| {
+            let mut j = 0;
+            for (i, x) in v.iter().enumerate() {
+                if x.abs() > v[j].abs() {
+                    j = i;
+                }
+            }
+            j
+        };
+        let mut x = vec![1.0 / n as f64; n];
+        self.solve_scaled(&mut x, false);
+        let mut est = norm1(&x);
+        let mut worst = argmax(&x);
+        if n > 1 {
+            let mut s = sign(&x);
+            let mut z = s.clone();
+            self.solve_scaled(&mut z, true);
+            let mut j = argmax(&z);
+            for _ in 1..5 {
+                let mut e = vec![0.0; n];
+                e[j] = 1.0;
+                self.solve_scaled(&mut e, false);
+                let old = est;
+                est = norm1(&e);
+                let sn = sign(&e);
+                if est > old {
+                    worst = argmax(&e);
+                }
+                if sn == s || est <= old {
+                    est = est.max(old);
+                    break;
+                }
+                s = sn;
+                z.clone_from(&s);
+                self.solve_scaled(&mut z, true);
+                let jl = j;
+                j = argmax(&z);
+                if z[jl].abs() == z[j].abs() {
+                    break;
+                }
+            }
+            let mut alt: Vec<f64> = (0..n)
+                .map(|i| {
+                    let v = 1.0 + i as f64 / (n - 1) as f64;
+                    if i % 2 == 0 {
+                        v
+                    } else {
+                        -v
+                    }
+                })
+                .collect();
+            self.solve_scaled(&mut alt, false);
+            let alt_est = 2.0 * norm1(&alt) / (3.0 * n as f64);
+            if alt_est > est {
+                est = alt_est;
+                worst = argmax(&alt);
+            }
+        }
+        (est, worst)
+    }
+
+    /// Estimate the condition number of the scaled matrix, and the unknown most sensitive to it.
+    fn estimate_condition(
+        &mut self,
+        a: SparseColMatRef<'_, usize, f64>,
+        opts: &SolverOptions,
+    ) -> Result<(), SolveError> {
+        if !opts.condition {
+            return Ok(());
+        }
+        let t = Instant::now();
+        let sa = scaled(a, &self.scale);
+        let anorm = norm1_of(a.symbolic().col_ptr(), sa.val(), a.ncols());
+        let (inv, worst) = self.inverse_norm1();
+        let c = anorm * inv;
+        self.info.condition = Some(c);
+        self.info.timings.condition = t.elapsed();
+        self.info.sensitive = Some(worst);
+        Ok(())
+    }
 }
 
-/// Factorise `a` (see the module documentation); returns the factors, the
-/// method used, timings of the symbolic and numeric phases, and the factor
-/// non-zeros.
-pub fn factorize(
+fn norm1_of(cp: &[usize], v: &[f64], n: usize) -> f64 {
+    (0..n).map(|j| v[cp[j]..cp[j + 1]].iter().map(|x| x.abs()).sum::<f64>()).fold(0.0, f64::max)
+}
+
+/// Factorise `a` (see the module documentation) with a fresh analysis.
+pub fn factorize(a: SparseColMatRef<'_, usize, f64>, opts: &SolverOptions) -> Result<Factorization, SolveError> {
+    factorize_with(a, opts, &mut None)
+}
+
+/// Factorise `a`, reusing the symbolic analysis in `analysis` when it was made for the same pattern (and
+/// storing the new one otherwise).
+pub fn factorize_with(
     a: SparseColMatRef<'_, usize, f64>,
     opts: &SolverOptions,
-) -> Result<(Factorization, Method, Timings, usize), SolveError> {
+    analysis: &mut Option<Analysis>,
+) -> Result<Factorization, SolveError> {
     let n = a.nrows();
     if a.ncols() != n {
         return Err(SolveError::Internal(format!("matrix is {}×{}", n, a.ncols())));
     }
+    let diag = diagonal(a);
+    let symmetric = || is_symmetric(a, opts.sym_tol);
     let method = match opts.method {
-        Method::Auto => {
-            if is_symmetric(a, opts.sym_tol) {
+        Method::Auto if symmetric() => {
+            if diag.iter().all(|&d| d > 0.0) {
                 Method::Cholesky
             } else {
-                Method::Lu
+                Method::Ldlt
             }
         }
-        Method::Cholesky => {
-            if !is_symmetric(a, opts.sym_tol) {
-                return Err(SolveError::NotSymmetric);
-            }
-            Method::Cholesky
-        }
-        Method::Lu => Method::Lu,
+        Method::Auto => Method::Lu,
+        Method::Cholesky | Method::Ldlt if !symmetric() => return Err(SolveError::NotSymmetric),
+        m => m,
     };
-    let mut timings = Timings::default();
-    // Dofs without stiffness (zero / negative diagonal) for both methods.
-    let diag = diagonal(a);
     let empty_col = |j: usize| {
         let cp = a.symbolic().col_ptr();
         a.val()[cp[j]..cp[j + 1]].iter().all(|v| *v == 0.0)
@@ -279,39 +655,198 @@ pub fn factorize(
         let pivots = bad.iter().map(|&j| diag[j]).collect();
         return Err(SolveError::Singular { kind: SingularKind::NoStiffness, dofs: bad, pivots });
     }
-    match method {
-        Method::Cholesky => {
-            let t0 = Instant::now();
-            let scale: Vec<f64> = diag.iter().map(|d| 1.0 / d.sqrt()).collect();
-            let (cp, ri, v) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
-            let mut sv = Vec::with_capacity(v.len());
-            for j in 0..n {
-                for p in cp[j]..cp[j + 1] {
-                    sv.push(v[p] * scale[ri[p]] * scale[j]);
-                }
+    let mut f = match method {
+        Method::Lu => factorize_lu(a, opts)?,
+        _ => factorize_symmetric(a, &diag, method, opts, analysis)?,
+    };
+    f.estimate_condition(a, opts)?;
+    Ok(f)
+}
+
+/// Largest backward error an LDLᵀ solve may end with (64 ε): beyond it the pivot order did not
+/// suit the matrix, and LU with partial pivoting takes over.
+pub const LDLT_BACKWARD_ERROR: f64 = 64.0 * f64::EPSILON;
+
+/// Solve `A x = b` with `f` and refine; an LDLᵀ whose refinement does not bring the backward error to
+/// round-off ([`LDLT_BACKWARD_ERROR`]) is replaced by an LU of `a`, with which the solve is made again.
+pub fn solve_refined_or_lu(
+    f: &mut Factorization,
+    a: SparseColMatRef<'_, usize, f64>,
+    b: &[f64],
+    opts: &SolverOptions,
+) -> Result<(Vec<f64>, f64, usize), SolveError> {
+    let (x, w, rel, steps) = f.refine(a, b, opts.refine_max);
+    if f.info.method != Some(Method::Ldlt) || w <= LDLT_BACKWARD_ERROR {
+        return Ok((x, rel, steps));
+    }
+    let mut lu = factorize_lu(a, opts)?;
+    lu.info.fallback = true;
+    lu.info.timings.symbolic += f.info.timings.symbolic;
+    lu.info.timings.factorization += f.info.timings.factorization;
+    lu.estimate_condition(a, opts)?;
+    lu.info.timings.condition += f.info.timings.condition;
+    *f = lu;
+    Ok(f.solve_refined(a, b, opts.refine_max))
+}
+
+/// Ruiz's equilibration: `S` such that every row and column of `S A S` that has an entry has its largest
+/// one in [1/2, 1] (10 sweeps at most), each factor a power of 2 so that the scaling adds no round-off.
+/// Unlike one sweep of max-scaling it also brings rows without a diagonal (multipliers) to unit size, so
+/// that their pivots are measured against 1.
+fn equilibration(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
+    let (cp, ri, v) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+    let n = a.ncols();
+    let mut s = vec![1.0f64; n];
+    let mut m = vec![0.0f64; n];
+    for _ in 0..10 {
+        m.iter_mut().for_each(|x| *x = 0.0);
+        for j in 0..n {
+            for p in cp[j]..cp[j + 1] {
+                let i = ri[p];
+                let x = (v[p] * s[i] * s[j]).abs();
+                m[j] = m[j].max(x);
+                m[i] = m[i].max(x);
             }
-            let sym = SymbolicSparseColMat::new_checked(
-                n,
-                n,
-                cp.to_vec(),
-                a.symbolic().col_nnz().map(|c| c.to_vec()),
-                ri.to_vec(),
-            );
-            let scaled = SparseColMat::new(sym, sv);
-            let symbolic =
-                factorize_symbolic_cholesky(scaled.symbolic(), Side::Lower, SymmetricOrdering::Amd, Default::default())
-                    .map_err(|e| SolveError::Internal(format!("{e:?}")))?;
-            timings.symbolic = t0.elapsed();
-            let t1 = Instant::now();
-            let par = Par::Seq;
-            let mut values = vec![0.0f64; symbolic.len_val()];
-            let eps = if opts.nprec >= 0 { 10f64.powi(-opts.nprec) } else { 0.0 };
-            let reg = LltRegularization {
-                dynamic_regularization_delta: if opts.nprec >= 0 { SENTINEL_PIVOT } else { 0.0 },
-                dynamic_regularization_epsilon: eps,
-            };
-            let mut buf = MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()));
-            let res = symbolic.factorize_numeric_llt(
+        }
+        let mut done = true;
+        for (si, &mi) in s.iter_mut().zip(&m) {
+            if mi > 0.0 && !(0.5..=1.0).contains(&mi) {
+                done = false;
+                // The nearest power of 2 to 1/√m.
+                *si *= (-0.5 * mi.log2()).round().exp2();
+            }
+        }
+        if done {
+            break;
+        }
+    }
+    s
+}
+
+/// `S = diag(1/√max_j |a_ij|)` over rows and columns (1 for an empty row).
+fn max_scaling(a: SparseColMatRef<'_, usize, f64>) -> Vec<f64> {
+    let (cp, ri, v) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+    let n = a.ncols();
+    let mut s = vec![0.0f64; n];
+    for j in 0..n {
+        for p in cp[j]..cp[j + 1] {
+            let x = v[p].abs();
+            s[j] = s[j].max(x);
+            s[ri[p]] = s[ri[p]].max(x);
+        }
+    }
+    s.iter().map(|&m| if m > 0.0 { 1.0 / m.sqrt() } else { 1.0 }).collect()
+}
+
+/// `S A S` on the pattern of `a`.
+fn scaled(a: SparseColMatRef<'_, usize, f64>, scale: &[f64]) -> SparseColMat<usize, f64> {
+    let n = a.ncols();
+    let (cp, ri, v) = (a.symbolic().col_ptr(), a.symbolic().row_idx(), a.val());
+    let mut sv = Vec::with_capacity(v.len());
+    for j in 0..n {
+        for p in cp[j]..cp[j + 1] {
+            sv.push(v[p] * scale[ri[p]] * scale[j]);
+        }
+    }
+    let sym = SymbolicSparseColMat::new_checked(
+        a.nrows(),
+        n,
+        cp.to_vec(),
+        a.symbolic().col_nnz().map(|c| c.to_vec()),
+        ri.to_vec(),
+    );
+    SparseColMat::new(sym, sv)
+}
+
+fn factorize_lu(a: SparseColMatRef<'_, usize, f64>, opts: &SolverOptions) -> Result<Factorization, SolveError> {
+    let _ = opts;
+    let n = a.nrows();
+    let mut timings = Timings::default();
+    let t0 = Instant::now();
+    // One sweep of max-scaling: LU pivots by rows, it needs no more.
+    let scale = max_scaling(a);
+    let sa = scaled(a, &scale);
+    let symbolic = SymbolicLu::try_new(sa.symbolic()).map_err(|e| SolveError::Internal(format!("{e:?}")))?;
+    timings.symbolic = t0.elapsed();
+    let t1 = Instant::now();
+    let lu = Lu::try_new_with_symbolic(symbolic, sa.as_ref()).map_err(|e| match e {
+        faer::sparse::linalg::LuError::SymbolicSingular { index } => SolveError::Singular {
+            kind: SingularKind::Structural,
+            dofs: vec![index.min(n.saturating_sub(1))],
+            pivots: vec![f64::NAN],
+        },
+        other => SolveError::Internal(format!("{other:?}")),
+    })?;
+    timings.factorization = t1.elapsed();
+    let info = FactorInfo { method: Some(Method::Lu), threads: 1, n, timings, ..Default::default() };
+    Ok(Factorization { kind: Kind::Lu(Box::new(lu)), scale, par: Par::Seq, info })
+}
+
+fn factorize_symmetric(
+    a: SparseColMatRef<'_, usize, f64>,
+    diag: &[f64],
+    method: Method,
+    opts: &SolverOptions,
+    analysis: &mut Option<Analysis>,
+) -> Result<Factorization, SolveError> {
+    let n = a.nrows();
+    let mut timings = Timings::default();
+    let t0 = Instant::now();
+    let (cp, ri) = (a.symbolic().col_ptr(), a.symbolic().row_idx());
+    // Scaling: Jacobi for LLᵀ (unit diagonal), max-equilibration for LDLᵀ (unit largest entries).
+    let scale: Vec<f64> =
+        if method == Method::Cholesky { diag.iter().map(|d| 1.0 / d.sqrt()).collect() } else { equilibration(a) };
+    let sdiag: Vec<f64> = (0..n).map(|j| diag[j] * scale[j] * scale[j]).collect();
+    // Rows without a positive diagonal (multipliers): ordered after their positive neighbours.
+    let zero: Vec<bool> =
+        if method == Method::Ldlt { sdiag.iter().map(|&d| d <= 1e-14).collect() } else { vec![false; n] };
+    let ordering = opts.ordering.resolve(n);
+    let reused = analysis.as_ref().is_some_and(|an| an.matches(a, &zero, ordering));
+    if !reused {
+        let (ptr, adj) = ordering::adjacency(a.symbolic());
+        let perm = ordering::order_graph(&ptr, &adj, ordering).map_err(SolveError::Internal)?;
+        let perm = ordering::defer_multipliers(&ptr, &adj, &zero, perm);
+        drop((ptr, adj));
+        let mut inv = vec![0usize; n];
+        for (k, &p) in perm.iter().enumerate() {
+            inv[p] = k;
+        }
+        let perm_ref = faer::perm::PermRef::new_checked(&perm, &inv, n);
+        let symbolic = factorize_symbolic_cholesky(
+            a.symbolic(),
+            Side::Lower,
+            SymmetricOrdering::Custom(perm_ref),
+            Default::default(),
+        )
+        .map_err(|e| SolveError::Internal(format!("{e:?}")))?;
+        *analysis = Some(Analysis {
+            col_ptr: cp.to_vec(),
+            row_idx: ri.to_vec(),
+            zero: zero.clone(),
+            ordering,
+            symbolic: Arc::new(symbolic),
+        });
+    }
+    let symbolic = analysis.as_ref().expect("analysis set above").symbolic.clone();
+    let scaled = scaled(a, &scale);
+    timings.symbolic = t0.elapsed();
+
+    let t1 = Instant::now();
+    let par = opts.par();
+    let mut values = vec![0.0f64; symbolic.len_val()];
+    // LLᵀ: a pivot below 10^-NPREC is singular, marked by the sentinel. LDLᵀ: a pivot below round-off
+    // (an unknown whose only couplings are eliminated later) is replaced by ±δ, a perturbation that
+    // the refinement corrects; a singular matrix shows in the condition estimate.
+    let (eps, delta) = match (method, opts.nprec >= 0) {
+        (Method::Cholesky, true) => (10f64.powi(-opts.nprec), SENTINEL_PIVOT),
+        (Method::Cholesky, false) => (f64::MIN_POSITIVE, f64::EPSILON),
+        _ => (LDLT_NULL_PIVOT, LDLT_DELTA),
+    };
+    let failed = if method == Method::Cholesky {
+        let reg = LltRegularization { dynamic_regularization_delta: delta, dynamic_regularization_epsilon: eps };
+        let mut buf = MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()));
+        symbolic
+            .factorize_numeric_llt(
                 &mut values,
                 scaled.as_ref(),
                 Side::Lower,
@@ -319,62 +854,92 @@ pub fn factorize(
                 par,
                 MemStack::new(&mut buf),
                 Default::default(),
-            );
-            timings.factorization = t1.elapsed();
-            let perm_fwd: Vec<usize> = match symbolic.perm() {
-                Some(p) => p.arrays().0.to_vec(),
-                None => (0..n).collect(),
-            };
-            if let Err(e) = res {
-                let k = match e {
-                    faer::linalg::solvers::LltError::NonPositivePivot { index } => {
-                        index.saturating_sub(1).min(n.saturating_sub(1))
-                    }
-                };
-                return Err(SolveError::Singular {
-                    kind: SingularKind::Pivot,
-                    dofs: vec![perm_fwd[k]],
-                    pivots: vec![f64::NAN],
-                });
-            }
-            let sq = SENTINEL_PIVOT.sqrt();
-            let ldiag = factor_diagonal(&symbolic, &values);
-            let mut dofs = vec![];
-            let mut pivots = vec![];
-            if opts.nprec >= 0 {
-                for (k, &l) in ldiag.iter().enumerate() {
-                    if l == sq || l * l < eps || l.is_nan() {
-                        dofs.push(perm_fwd[k]);
-                        pivots.push(if l == sq { 0.0 } else { l * l });
-                    }
-                }
-            }
-            if !dofs.is_empty() {
-                return Err(SolveError::Singular { kind: SingularKind::Pivot, dofs, pivots });
-            }
-            let nnz = symbolic.len_val();
-            Ok((Factorization::Cholesky { symbolic: Box::new(symbolic), values, scale }, method, timings, nnz))
+            )
+            .err()
+            .map(|faer::linalg::solvers::LltError::NonPositivePivot { index }| index)
+    } else {
+        let reg = LdltRegularization {
+            dynamic_regularization_signs: None,
+            dynamic_regularization_delta: delta,
+            dynamic_regularization_epsilon: eps,
+        };
+        let mut buf = MemBuffer::new(symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()));
+        symbolic
+            .factorize_numeric_ldlt(
+                &mut values,
+                scaled.as_ref(),
+                Side::Lower,
+                reg,
+                par,
+                MemStack::new(&mut buf),
+                Default::default(),
+            )
+            .err()
+            .map(|faer::linalg::solvers::LdltError::ZeroPivot { index }| index)
+    };
+    timings.factorization = t1.elapsed();
+    let perm_fwd: Vec<usize> = match symbolic.perm() {
+        Some(p) => p.arrays().0.to_vec(),
+        None => (0..n).collect(),
+    };
+    if let Some(index) = failed {
+        let k = index.saturating_sub(1).min(n.saturating_sub(1));
+        return Err(SolveError::Singular { kind: SingularKind::Pivot, dofs: vec![perm_fwd[k]], pivots: vec![0.0] });
+    }
+    // Relative pivots: d_k / a_kk (LLᵀ: l_kk² with a unit diagonal), |d_k| for a zero diagonal.
+    let fdiag = factor_diagonal(&symbolic, &values);
+    let mut worst: Vec<(f64, usize)> = Vec::new();
+    let mut min_pivot = f64::INFINITY;
+    let mut regularized = 0;
+    for (k, &l) in fdiag.iter().enumerate() {
+        let dof = perm_fwd[k];
+        let regularised = if method == Method::Cholesky { l == SENTINEL_PIVOT.sqrt() } else { l.abs() == delta };
+        if regularised && method == Method::Ldlt {
+            // A null pivot of the elimination order, not of the matrix: the refinement corrects the
+            // perturbation, and a singular matrix shows there (then LU takes over).
+            regularized += 1;
+            continue;
         }
-        _ => {
-            let t0 = Instant::now();
-            let symbolic = SymbolicLu::try_new(a.symbolic()).map_err(|e| SolveError::Internal(format!("{e:?}")))?;
-            timings.symbolic = t0.elapsed();
-            let t1 = Instant::now();
-            let lu = Lu::try_new_with_symbolic(symbolic, a).map_err(|e| match e {
-                faer::sparse::linalg::LuError::SymbolicSingular { index } => SolveError::Singular {
-                    kind: SingularKind::Structural,
-                    dofs: vec![index.min(n.saturating_sub(1))],
-                    pivots: vec![f64::NAN],
-                },
-                other => SolveError::Internal(format!("{other:?}")),
-            })?;
-            timings.factorization = t1.elapsed();
-            Ok((Factorization::Lu(Box::new(lu)), method, timings, 0))
+        // LLᵀ: l_kk² is the pivot relative to the unit diagonal of the scaled matrix; LDLᵀ: |d_k| relative
+        // to the largest entry of its row, 1 in the equilibrated matrix.
+        let rel = if regularised {
+            0.0
+        } else if method == Method::Cholesky {
+            l * l
+        } else {
+            l.abs()
+        };
+        min_pivot = min_pivot.min(rel);
+        if opts.nprec >= 0 && (rel < eps || rel.is_nan()) {
+            worst.push((rel, dof));
         }
     }
+    if !worst.is_empty() {
+        worst.sort_by(|x, y| x.0.total_cmp(&y.0));
+        return Err(SolveError::Singular {
+            kind: SingularKind::Pivot,
+            dofs: worst.iter().map(|w| w.1).collect(),
+            pivots: worst.iter().map(|w| w.0).collect(),
+        });
+    }
+    let info = FactorInfo {
+        method: Some(method),
+        ordering: Some(ordering),
+        threads: opts.thread_count(),
+        n,
+        factor_nnz: symbolic.len_val(),
+        reused,
+        regularized,
+        min_pivot: (method == Method::Cholesky).then_some(min_pivot),
+        timings,
+        ..Default::default()
+    };
+    let kind =
+        if method == Method::Cholesky { Kind::Llt { symbolic, values } } else { Kind::Ldlt { symbolic, values } };
+    Ok(Factorization { kind, scale, par, info })
 }
 
-/// Diagonal of the Cholesky factor, in the permuted order.
+/// Diagonal of the factor (L of LLᵀ, D of LDLᵀ), in the permuted order.
 fn factor_diagonal(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> Vec<f64> {
     match symbolic.raw() {
         SymbolicCholeskyRaw::Simplicial(s) => {
@@ -397,26 +962,63 @@ fn factor_diagonal(symbolic: &SymbolicCholesky<usize>, values: &[f64]) -> Vec<f6
     }
 }
 
-/// Solve `A x = b` (factorisation + solve, timed; residual checked).
+/// Solve `A x = b` (factorisation + solve + refinement, timed; residual checked against RESI_RELA).
 pub fn solve(a: SparseColMatRef<'_, usize, f64>, b: &[f64], opts: &SolverOptions) -> Result<Solution, SolveError> {
+    solve_with(a, b, opts, &mut None)
+}
+
+/// [`solve`] reusing (and keeping) a symbolic analysis.
+pub fn solve_with(
+    a: SparseColMatRef<'_, usize, f64>,
+    b: &[f64],
+    opts: &SolverOptions,
+    analysis: &mut Option<Analysis>,
+) -> Result<Solution, SolveError> {
     if b.len() != a.nrows() {
         return Err(SolveError::Internal(format!("right-hand side has {} rows, matrix {}", b.len(), a.nrows())));
     }
-    let (fact, method, mut timings, factor_nnz) = factorize(a, opts)?;
+    let mut fact = factorize_with(a, opts, analysis)?;
     let t = Instant::now();
-    let x = fact.solve(b);
-    let residual = relative_residual(a, &x, b);
-    timings.solve = t.elapsed();
-    if x.iter().any(|v| !v.is_finite()) || (opts.resi_rela >= 0.0 && (residual.is_nan() || residual > opts.resi_rela)) {
-        // Report the equations with the largest residual.
-        let ax = matvec(a, &x);
+    let (x, residual, refinements) = solve_refined_or_lu(&mut fact, a, b, opts)?;
+    let mut info = fact.info.clone();
+    info.timings.solve = t.elapsed();
+    check_solution(a, &x, b, residual, opts)?;
+    Ok(Solution {
+        x,
+        method: info.method.unwrap_or(Method::Lu),
+        timings: info.timings,
+        residual,
+        factor_nnz: info.factor_nnz,
+        refinements,
+        info,
+    })
+}
+
+/// A non-finite solution, or a relative residual above RESI_RELA, is an error naming the equations with
+/// the largest residuals.
+pub fn check_solution(
+    a: SparseColMatRef<'_, usize, f64>,
+    x: &[f64],
+    b: &[f64],
+    rel: f64,
+    opts: &SolverOptions,
+) -> Result<(), SolveError> {
+    if x.iter().any(|v| !v.is_finite()) || (opts.resi_rela >= 0.0 && (rel.is_nan() || rel > opts.resi_rela)) {
+        let r: Vec<f64> = residual(a, x, b).iter().map(|v| v.abs()).collect();
         let mut idx: Vec<usize> = (0..b.len()).collect();
-        let r: Vec<f64> = ax.iter().zip(b).map(|(p, q)| (q - p).abs()).collect();
         idx.sort_by(|&i, &j| r[j].total_cmp(&r[i]));
         idx.truncate(6);
-        return Err(SolveError::Singular { kind: SingularKind::Residual(residual), dofs: idx, pivots: vec![] });
+        return Err(SolveError::Singular { kind: SingularKind::Residual(rel), dofs: idx, pivots: vec![] });
     }
-    Ok(Solution { x, method, timings, residual, factor_nnz })
+    Ok(())
+}
+
+/// Peak resident memory of this process (VmHWM), in bytes, where the system tells it.
+pub fn peak_memory() -> Option<u64> {
+    let s = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = s.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb * 1024)
 }
 
 #[cfg(test)]
@@ -437,6 +1039,7 @@ mod tests {
         for (x, e) in s.x.iter().zip([1.0, 1.0, 1.0]) {
             assert!((x - e).abs() < 1e-14);
         }
+        assert!(s.info.condition.unwrap() >= 1.0);
         let a = mat(2, &[(0, 0, 2.0), (0, 1, 1.0), (1, 1, 3.0)]);
         let s = solve(a.as_ref(), &[3.0, 3.0], &SolverOptions::default()).unwrap();
         assert_eq!(s.method, Method::Lu);
@@ -460,5 +1063,62 @@ mod tests {
         let z = mat(2, &[(0, 0, 1.0)]);
         let err = solve(z.as_ref(), &[1.0, 0.0], &SolverOptions::default()).unwrap_err();
         assert!(matches!(err, SolveError::Singular { kind: SingularKind::NoStiffness, ref dofs, .. } if dofs == &[1]));
+    }
+
+    /// A saddle point [[K, Cᵀ], [C, 0]]: springs with a multiplier tying the two ends. LDLᵀ, with the
+    /// multiplier ordered after its neighbours, solves it to round-off; the analysis is reused.
+    #[test]
+    fn saddle_point_by_ldlt() {
+        let n = 5;
+        let mut t = vec![];
+        for e in 0..n - 1 {
+            t.extend([(e, e, 2.0), (e + 1, e + 1, 2.0), (e, e + 1, -1.0), (e + 1, e, -1.0)]);
+        }
+        // Multiplier n: u0 - u4 = 0.
+        t.extend([(n, 0, 1.0), (0, n, 1.0), (n, n - 1, -1.0), (n - 1, n, -1.0)]);
+        let a = mat(n + 1, &t);
+        let xe: Vec<f64> = vec![0.3, -1.0, 2.0, 0.5, 0.3, 7.0];
+        let b = matvec(a.as_ref(), &xe);
+        let mut an = None;
+        let s = solve_with(a.as_ref(), &b, &SolverOptions::default(), &mut an).unwrap();
+        assert_eq!(s.method, Method::Ldlt);
+        assert!(!s.info.fallback);
+        for (x, e) in s.x.iter().zip(&xe) {
+            assert!((x - e).abs() < 1e-13, "{:?}", s.x);
+        }
+        let s = solve_with(a.as_ref(), &b, &SolverOptions::default(), &mut an).unwrap();
+        assert!(s.info.reused);
+    }
+
+    /// Iterative refinement brings a badly scaled system back to round-off: an SPD block of order 1e6 beside
+    /// a pair of multipliers of order 1e-6 whose only coupling is each other. The LDLᵀ meets a null pivot there,
+    /// regularises it by δ, and its first solve is off by ~δ; the refinement against the matrix brings the
+    /// error to round-off.
+    #[test]
+    fn refinement_brings_a_badly_scaled_saddle_point_back_to_round_off() {
+        let a = mat(
+            5,
+            &[
+                (0, 0, 4e6),
+                (1, 1, 4e6),
+                (2, 2, 4e6),
+                (0, 1, -1e6),
+                (1, 0, -1e6),
+                (1, 2, -1e6),
+                (2, 1, -1e6),
+                (3, 4, 1e-6),
+                (4, 3, 1e-6),
+            ],
+        );
+        let xe = [1.0, -2.0, 0.5, 3.0e6, -7.0e6];
+        let b = matvec(a.as_ref(), &xe);
+        let f = factorize(a.as_ref(), &SolverOptions::default()).unwrap();
+        assert_eq!(f.info.method, Some(Method::Ldlt));
+        assert_eq!(f.info.regularized, 1);
+        let err = |x: &[f64]| x.iter().zip(&xe).map(|(p, q)| (p - q).abs() / q.abs()).fold(0.0, f64::max);
+        let x0 = f.solve(&b);
+        assert!(err(&x0) > 1e-10, "the first solve is already exact: {:e}", err(&x0));
+        let (x, rel, steps) = f.solve_refined(a.as_ref(), &b, 10);
+        assert!(steps >= 1 && err(&x) < 1e-15 && rel < 1e-15, "error {:e}, residual {rel:e}", err(&x));
     }
 }

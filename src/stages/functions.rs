@@ -9,6 +9,7 @@ use crate::diag::{Error, Result};
 use crate::interp::{Formula, Value};
 use crate::stages::select::filtered;
 use crate::stages::Ctx;
+use crate::text::float_repr;
 
 // ------------------------------------------------------------------ helpers
 
@@ -163,24 +164,44 @@ pub fn defi_nappe(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     Ok(Some(ConceptData::Nappe(n)))
 }
 
+/// The most values DEFI_LIST_REEL and DEFI_LIST_ENTI make (80 MB of reals): more is a mistake in
+/// NOMBRE or PAS, which would otherwise exhaust the memory or the time of the run.
+const MAX_LIST: usize = 10_000_000;
+
 fn list_from_intervals(a: &Args, start: f64, int: bool) -> Result<Vec<f64>> {
+    if !start.is_finite() {
+        return Err(a.err("DEBUT", format!("DEBUT={} is not a finite number", float_repr(start))));
+    }
     let mut out = vec![start];
     let mut cur = start;
     for occ in a.facts("INTERVALLE") {
         let end = occ.req_real("JUSQU_A")?;
+        if !end.is_finite() {
+            return Err(occ.err("JUSQU_A", format!("JUSQU_A={} is not a finite number", float_repr(end))));
+        }
         if end <= cur {
             return Err(occ.err("JUSQU_A", format!("the interval must end after its start ({end} <= {cur})")));
         }
+        let room = MAX_LIST - out.len();
         let n = match (occ.int("NOMBRE"), occ.real("PAS")) {
+            (Some(n), _) if n as u64 > room as u64 => {
+                return Err(occ.err("NOMBRE", format!("NOMBRE={n} makes a list of more than {MAX_LIST} values")))
+            }
             (Some(n), _) => n,
-            (None, Some(p)) if p > 0.0 => {
+            (None, Some(p)) if p > 0.0 && p.is_finite() => {
                 let n = ((end - cur) / p).round();
+                if n > room as f64 {
+                    return Err(occ.err(
+                        "PAS",
+                        format!("PAS={} makes a list of more than {MAX_LIST} values in [{cur}, {end}]", float_repr(p)),
+                    ));
+                }
                 if ((cur + n * p) - end).abs() > 1e-6 * p.abs().max(1e-300) {
                     return Err(occ.err("PAS", format!("the step {p} does not divide the interval [{cur}, {end}]")));
                 }
                 n as i64
             }
-            _ => return Err(occ.err("PAS", "the step must be positive")),
+            _ => return Err(occ.err("PAS", "the step must be a positive finite number")),
         };
         let step = (end - cur) / n as f64;
         for k in 1..n {
@@ -465,7 +486,7 @@ pub fn impr_fonction(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     if format != "TABLEAU" {
         return Err(a.err("FORMAT", format!("FORMAT='{format}' is not supported yet")));
     }
-    let fmt = |v: f64| crate::interp::format::sci(v, 10, true);
+    let fmt = |v: f64| crate::text::sci(v, 10, true);
     let mut text = String::new();
     for t in a.texts("TITRE") {
         text.push_str(&format!("#TITRE {t}\n"));
@@ -581,7 +602,7 @@ pub fn lire_fonction(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 
 pub fn recu_fonction(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let Some(tc) = a.concept("TABLE") else {
-        return Err(a.err("RESULTAT", "RECU_FONCTION from a result is not supported yet"));
+        return recu_fonction_resultat(a);
     };
     let name = tc.label();
     let t: Table = tc.table()?;
@@ -597,6 +618,92 @@ pub fn recu_fonction(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         }
     }
     let base = Function::new(px, py, vec![0.0], vec![0.0], (Interp::Lin, Interp::Lin), Prol::Exclu, Prol::Exclu)?;
+    Ok(Some(ConceptData::Function(function_from(a, Some(&base), x, y)?)))
+}
+
+/// RECU_FONCTION from a result: one component of a field at a node (nodal fields) or at a Gauss point
+/// of a cell (ELGA fields), as a function of INST over every stored step.
+fn recu_fonction_resultat(a: &Args) -> Result<Option<ConceptData>> {
+    use crate::concepts::result::Field;
+    let rc = a.concept("RESULTAT").ok_or_else(|| a.err("TABLE", "TABLE or RESULTAT is required"))?;
+    a.refuse(&["NOM_PARA_RESU", "LIST_INST"])?;
+    let _ = a.text("TOUT_ORDRE"); // every step: the only selection supported
+    let name = rc.label();
+    let r = rc.result()?;
+    let model = r.model.model()?;
+    let mesh = model.current_mesh();
+    let mesh_name = model.mesh_concept.label();
+    let cham = a.req_text("NOM_CHAM")?;
+    let cmp = a.req_text("NOM_CMP")?;
+    let one = |kw: &str, names: &[String]| -> Result<String> {
+        match names {
+            [n] => Ok(n.clone()),
+            _ => Err(a.err(kw, format!("{kw} must designate exactly one entity (it gives {})", names.len()))),
+        }
+    };
+    let node = || -> Result<usize> {
+        let n = if let Some(g) = a.text("GROUP_NO") {
+            let nodes = mesh
+                .node_groups
+                .get(g)
+                .ok_or_else(|| a.err("GROUP_NO", format!("the mesh {mesh_name} has no group of nodes '{g}'")))?;
+            one("GROUP_NO", &nodes.iter().map(|&n| mesh.node_names[n].clone()).collect::<Vec<_>>())?
+        } else {
+            a.text("NOEUD").ok_or_else(|| a.err("NOEUD", "NOEUD or GROUP_NO is required"))?.to_string()
+        };
+        mesh.node_names
+            .iter()
+            .position(|x| *x == n)
+            .ok_or_else(|| a.err("NOEUD", format!("the mesh {mesh_name} has no node {n}")))
+    };
+    let cell = || -> Result<usize> {
+        let c = if let Some(g) = a.text("GROUP_MA") {
+            let cells = mesh
+                .cell_groups
+                .get(g)
+                .ok_or_else(|| a.err("GROUP_MA", format!("the mesh {mesh_name} has no group of cells '{g}'")))?;
+            one("GROUP_MA", &cells.iter().map(|&c| mesh.cell_names[c].clone()).collect::<Vec<_>>())?
+        } else {
+            a.text("MAILLE").ok_or_else(|| a.err("MAILLE", "MAILLE or GROUP_MA is required"))?.to_string()
+        };
+        mesh.cell_names
+            .iter()
+            .position(|x| *x == c)
+            .ok_or_else(|| a.err("MAILLE", format!("the mesh {mesh_name} has no cell {c}")))
+    };
+    let (mut x, mut y) = (Vec::new(), Vec::new());
+    for st in &r.steps {
+        let f = st.fields.get(cham).ok_or_else(|| {
+            a.err("NOM_CHAM", format!("result {name} has no field {cham} at order {}", st.nume_ordre))
+        })?;
+        let k = f.component(cmp).ok_or_else(|| a.err("NOM_CMP", format!("field {cham} has no component {cmp}")))?;
+        let n = f.components().len();
+        let v = match f {
+            Field::Node { values, .. } => values[node()? * n + k],
+            Field::Elga { cells, .. } => {
+                let c = cell()?;
+                let p =
+                    a.int("POINT").ok_or_else(|| a.err("POINT", "POINT is required for a field at Gauss points"))?;
+                let vals = cells[c].as_ref().ok_or_else(|| {
+                    a.err("MAILLE", format!("field {cham} has no value on cell {}", mesh.cell_names[c]))
+                })?;
+                let npg = vals.len() / n;
+                if p < 1 || p as usize > npg {
+                    return Err(
+                        a.err("POINT", format!("cell {} has {npg} points, point {p} requested", mesh.cell_names[c]))
+                    );
+                }
+                vals[(p as usize - 1) * n + k]
+            }
+            _ => return Err(a.err("NOM_CHAM", format!("RECU_FONCTION of the {cham} field is not supported yet"))),
+        };
+        if v.is_nan() {
+            return Err(a.err("NOM_CMP", format!("{cham} has no value of {cmp} there at order {}", st.nume_ordre)));
+        }
+        x.push(st.inst);
+        y.push(v);
+    }
+    let base = Function::new("INST", cmp, vec![0.0], vec![0.0], (Interp::Lin, Interp::Lin), Prol::Exclu, Prol::Exclu)?;
     Ok(Some(ConceptData::Function(function_from(a, Some(&base), x, y)?)))
 }
 

@@ -16,8 +16,17 @@ use crate::fem::geometry;
 // ------------------------------------------------------------------ AFFE_CHAR_MECA(_F)
 
 /// Load keywords we implement; any other factor keyword given is refused.
-const LOAD_KEYWORDS: &[&str] =
-    &["DDL_IMPO", "FACE_IMPO", "FORCE_NODALE", "FORCE_CONTOUR", "FORCE_FACE", "PRES_REP", "PESANTEUR", "LIAISON_DDL"];
+const LOAD_KEYWORDS: &[&str] = &[
+    "DDL_IMPO",
+    "FACE_IMPO",
+    "FORCE_NODALE",
+    "FORCE_CONTOUR",
+    "FORCE_FACE",
+    "PRES_REP",
+    "PESANTEUR",
+    "LIAISON_DDL",
+    "FLUX_THM_REP",
+];
 const PLAIN_KEYWORDS: &[&str] = &["MODELE", "INFO", "VERI_AFFE", "VERI_NORM", "DOUBLE_LAGRANGE", "CHAM_MATER"];
 /// Keywords of DDL_IMPO / FORCE_* that select entities rather than give values.
 const SELECTORS: &[&str] = &["TOUT", "NOEUD", "GROUP_NO", "GROUP_MA", "MAILLE", "SANS_GROUP_MA", "SANS_GROUP_NO"];
@@ -101,6 +110,21 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
         let cells = select_cells(&mesh, occ, &name)?;
         let value = occ.val("PRES").and_then(load_value).ok_or_else(|| occ.err("PRES", "PRES is required"))?;
         items.push(LoadItem::Pressure { cells, value });
+    }
+    for occ in a.facts("FLUX_THM_REP") {
+        // FLUN is a heat flux and FLUN_HYDR2 the flux of a second fluid: neither has an equation in a
+        // saturated HM model.
+        for k in ["FLUN", "FLUN_HYDR2", "FLUN_FRAC"] {
+            if occ.declares(k) && occ.given(k) {
+                return Err(occ.err(k, "not supported yet (FLUN_HYDR1, the flux of the liquid, is)"));
+            }
+        }
+        let value = occ
+            .val("FLUN_HYDR1")
+            .and_then(load_value)
+            .ok_or_else(|| occ.err("FLUN_HYDR1", "FLUN_HYDR1 is required (the only flux of a saturated HM model)"))?;
+        let cells = if occ.has("TOUT") { (0..mesh.cells.len()).collect() } else { select_cells(&mesh, occ, &name)? };
+        items.push(LoadItem::FluxThm { cells, value });
     }
     if let Some(occ) = a.declares("PESANTEUR").then(|| a.fact("PESANTEUR")).flatten() {
         let d = occ.reals("DIRECTION");

@@ -32,7 +32,7 @@ pub fn affe_modele(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let cells = select_cells(&mesh, occ, &name)?;
         let mut placed = 0;
         for c in cells {
-            if let Some(role) = role_of(dim, mesh.cell_types[c]) {
+            if let Some(role) = role_of(dim, mesh.cell_types[c]).filter(|_| modelisation.accepts(mesh.cell_types[c])) {
                 elements[c] = Some(Element { phenomenon: phen.into(), modelisation, role });
                 placed += 1;
             }

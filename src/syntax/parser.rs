@@ -1057,7 +1057,14 @@ fn fstring(content: &str, off: usize, raw: bool) -> PResult<Vec<FPart>> {
             return err(off + pos, "f-string: empty expression not allowed");
         }
         let expr = parse_expr(expr_text, off + byte(start))?;
-        let conv = conv_at.map(|c| b.get(c + 1).map(|x| x.1).unwrap_or('s'));
+        let conv = match conv_at {
+            None => None,
+            Some(c) => match (b.get(c + 1).map(|x| x.1), c + 2 == spec_at.unwrap_or(j)) {
+                (Some(k @ ('s' | 'r' | 'a')), true) => Some(k),
+                (Some('s' | 'r' | 'a'), false) => return err(off + byte(c + 2), "f-string: expecting '}'"),
+                _ => return err(off + byte(c), "f-string: invalid conversion character: expected 's', 'r', or 'a'"),
+            },
+        };
         let spec = match spec_at {
             Some(s) => fstring(&content[byte(s + 1)..byte(j)], off + byte(s + 1), raw)?,
             None => Vec::new(),

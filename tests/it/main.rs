@@ -5,8 +5,10 @@
 mod common;
 
 mod fem;
+mod hm;
 mod language;
 mod legacy;
 mod med;
+mod study;
 mod tidy;
 mod xfem;

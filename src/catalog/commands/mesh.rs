@@ -317,6 +317,13 @@ fn defi_group() -> Command {
         .rules(vec![au_moins_un(&["CREA_GROUP_MA", "CREA_GROUP_NO", "DETR_GROUP_NO", "DETR_GROUP_MA"])])
 }
 
+/// Code_Aster 2025's `UN_PARMI("TOUT", "GROUP_MA", TOUT="OUI")`: TOUT excludes the other selections,
+/// and none given means `TOUT='OUI'` (the stage's default). The 2020 syntax asked for at least one of
+/// TOUT, MAILLE, GROUP_MA.
+fn whole_mesh_by_default() -> Vec<Rule> {
+    vec![exclus(&["TOUT", "GROUP_MA"]), exclus(&["TOUT", "MAILLE"])]
+}
+
 /// The cells a mesh transformation applies to, with the prefix of new nodes.
 fn cells_with_new_nodes(name: &'static str) -> Fact {
     fact(
@@ -329,7 +336,7 @@ fn cells_with_new_nodes(name: &'static str) -> Fact {
             simp("PREF_NUME").i().d(1),
         ],
     )
-    .rules(vec![au_moins_un(&["TOUT", "MAILLE", "GROUP_MA"])])
+    .rules(whole_mesh_by_default())
 }
 
 fn crea_maillage() -> Command {
@@ -360,12 +367,13 @@ fn crea_maillage() -> Command {
                 tout("TOUT"),
                 names("MAILLE"),
                 names("GROUP_MA"),
-                simp("PREF_MAILLE").txt().o(),
+                // 2020 syntax (mandatory then), gone in 2025.
+                simp("PREF_MAILLE").txt(),
                 simp("PREF_NUME").i(),
             ]
         )
         .many()
-        .rules(vec![au_moins_un(&["TOUT", "MAILLE", "GROUP_MA"])]),
+        .rules(whole_mesh_by_default()),
         fact(
             "RESTREINT",
             kws![
@@ -412,7 +420,8 @@ fn crea_maillage() -> Command {
                 simp("NOM").txt().o(),
                 simp("GROUP_NO_1").txt().o(),
                 simp("GROUP_NO_2").txt().o(),
-                simp("PREF_MAILLE").txt().o(),
+                // 2020 syntax (mandatory then), gone in 2025.
+                simp("PREF_MAILLE").txt(),
                 simp("PREF_NUME").i().d(1),
             ]
         )
@@ -435,8 +444,7 @@ fn crea_maillage() -> Command {
             ]
         )
         .many(),
-        fact("QUAD_LINE", kws![tout("TOUT"), names("MAILLE"), names("GROUP_MA")])
-            .rules(vec![au_moins_un(&["TOUT", "MAILLE", "GROUP_MA"])]),
+        fact("QUAD_LINE", kws![tout("TOUT"), names("MAILLE"), names("GROUP_MA")]).rules(whole_mesh_by_default()),
         fact(
             "REPERE",
             kws![

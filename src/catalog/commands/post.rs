@@ -1,4 +1,5 @@
-//! Post-processing: values of results and fields extracted to tables (POST_RELEVE_T).
+//! Post-processing: values of results and fields extracted to tables (POST_RELEVE_T), error norms of a
+//! field against reference formulas (POST_ERREUR).
 
 use super::common::*;
 use crate::catalog::schema::*;
@@ -99,6 +100,41 @@ fn post_releve_t() -> Command {
         ])
 }
 
+// ------------------------------------------------------------------ POST_ERREUR
+
+/// Code_Aster's `post_erreur.py`: one field (CHAM_GD) against reference FORMULEs of X, Y (, Z), one per
+/// group of GROUP_MA for each component given.
+fn post_erreur() -> Command {
+    let formulas = |names: &[&'static str]| -> Vec<Entry> {
+        names.iter().map(|n| Entry::from(simp(n).co(&[ConceptKind::Formule]).many())).collect()
+    };
+    let mut depl =
+        kws![simp("CHAM_MATER").co(&[ConceptKind::ChamMater]), simp("CHAM_GD").co(&[ConceptKind::ChamNo]).o(),];
+    depl.extend(formulas(&["DX", "DY", "DZ"]));
+    let mut ener = kws![
+        simp("CHAM_MATER").co(&[ConceptKind::ChamMater]).o(),
+        simp("DEFORMATION").txt().o().one_of(&["PETIT"]),
+        simp("CHAM_GD").co(&[ConceptKind::ChamElem]).o(),
+    ];
+    ener.extend(formulas(&["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ"]));
+    let mut lagr = kws![simp("CHAM_GD").co(&[ConceptKind::ChamNo]).o()];
+    lagr.extend(formulas(&["LAGS_C"]));
+    Command::new(
+        "POST_ERREUR",
+        "Error norms of a field against reference formulas over groups of cells: L2 of the displacement, \
+         energy norm of the stress, L2 of the contact pressure.",
+    )
+    .produces(ConceptKind::Table)
+    .kw(kws![
+        simp("OPTION").txt().o().one_of(&["DEPL_RELA", "ENER_RELA", "LAGR_RELA"]),
+        simp("MODELE").co(&[ConceptKind::Modele]).o(),
+        simp("GROUP_MA").txt().o().many(),
+        bloc(eq("OPTION", "DEPL_RELA"), depl),
+        bloc(eq("OPTION", "ENER_RELA"), ener),
+        bloc(eq("OPTION", "LAGR_RELA"), lagr),
+    ])
+}
+
 pub fn commands() -> Vec<Command> {
-    vec![post_releve_t()]
+    vec![post_releve_t(), post_erreur()]
 }

@@ -159,6 +159,16 @@ pub fn assemble(a: &Args, p: &Problem, model: &ConceptRef, inst: f64) -> Result<
                         forces.push((dofs, fe));
                     }
                 }
+                LoadItem::FluxThm { .. } => {
+                    return Err(a.err(
+                        "EXCIT",
+                        format!(
+                            "load {}: FLUX_THM_REP needs a hydro-mechanical model ({} has no pressure)",
+                            lc.label(),
+                            md.name()
+                        ),
+                    ))
+                }
                 LoadItem::Gravity { g, direction, cells } => {
                     let on: Vec<usize> = match cells {
                         Some(c) => c.iter().copied().filter(|c| p.materials[*c].is_some()).collect(),

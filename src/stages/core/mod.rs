@@ -7,6 +7,7 @@
 
 pub mod assembly;
 pub mod eval;
+pub mod hm;
 pub mod newton;
 pub mod problem;
 pub mod solver;

@@ -13,13 +13,24 @@ pub fn instants(a: &Args) -> Result<Vec<f64>> {
     let lc = inc.req_concept("LIST_INST")?;
     let list = match &*lc.data() {
         ConceptData::ListReal(v) => v.clone(),
+        ConceptData::ListInst(l) => l.instants.clone(),
         _ => {
             return Err(inc.err(
                 "LIST_INST",
-                format!("{} ({}) is not supported yet: give a DEFI_LIST_REEL", lc.label(), lc.kind()),
+                format!(
+                    "{} ({}) is not a list of instants: give a DEFI_LIST_REEL or a DEFI_LIST_INST",
+                    lc.label(),
+                    lc.kind()
+                ),
             ))
         }
     };
+    if let Some(w) = list.windows(2).position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater)) {
+        return Err(inc.err(
+            "LIST_INST",
+            format!("the instants of {} must increase strictly ({} then {})", lc.label(), list[w], list[w + 1]),
+        ));
+    }
     let prec = inc.real("PRECISION").unwrap_or(1e-6);
     let find = |t: f64, kw: &str| -> Result<usize> {
         list.iter()
@@ -42,9 +53,24 @@ pub fn instants(a: &Args) -> Result<Vec<f64>> {
     Ok(list[first..=last].to_vec())
 }
 
+/// How a step that fails is cut: DEFI_LIST_INST's ECHEC; a DEFI_LIST_REEL stops the run (ACTION='ARRET').
+pub fn subdivision(a: &Args) -> Option<crate::concepts::Subdivision> {
+    let lc = a.fact("INCREMENT")?.concept("LIST_INST")?;
+    let d = lc.data();
+    match &*d {
+        ConceptData::ListInst(l) => l.subdivision,
+        _ => None,
+    }
+}
+
 /// STAT_NON_LINE keywords no driver implements yet, and METHODE other than NEWTON.
 pub fn refuse_unsupported_options(a: &Args) -> Result<()> {
-    a.refuse(&[
+    refuse_unsupported_options_except(a, &[])
+}
+
+/// The same, less the keywords a driver handles itself (ETAT_INIT, ARCHIVAGE).
+pub fn refuse_unsupported_options_except(a: &Args, handled: &[&str]) -> Result<()> {
+    let refused: Vec<&str> = [
         "SOUS_STRUC",
         "ETAT_INIT",
         "RECH_LINEAIRE",
@@ -55,9 +81,16 @@ pub fn refuse_unsupported_options(a: &Args) -> Result<()> {
         "ENERGIE",
         "CRIT_STAB",
         "RESULTAT",
-    ])?;
+    ]
+    .into_iter()
+    .filter(|k| !handled.contains(k))
+    .collect();
+    a.refuse(&refused)?;
     if a.text("METHODE").is_some_and(|m| m != "NEWTON") {
         return Err(a.err("METHODE", "only METHODE='NEWTON' is supported yet"));
+    }
+    if handled.contains(&"ARCHIVAGE") {
+        return Ok(());
     }
     // ARCHIVAGE: every instant is stored; a selection of instants or fields is not supported yet.
     if let Some(arch) = a.fact("ARCHIVAGE") {
@@ -180,7 +213,8 @@ pub struct Converged {
 
 /// The Newton loop of one instant at time `t`: corrections until `conv` holds, or exactly one when
 /// `linear` (MECA_STATIQUE: one solve, no convergence test). A solve that does not converge in
-/// ITER_GLOB_MAXI corrections stops with a message located at CONVERGENCE.
+/// ITER_GLOB_MAXI corrections stops with a message located at CONVERGENCE; one past the run's time
+/// limit stops before its next correction.
 pub fn newton(a: &Args, conv: &Convergence, linear: bool, t: f64, step: &mut impl NewtonStep) -> Result<Converged> {
     let mut iters = 0;
     loop {
@@ -199,6 +233,10 @@ pub fn newton(a: &Args, conv: &Convergence, linear: bool, t: f64, step: &mut imp
                 ),
             ));
         }
+        crate::diag::check_deadline().map_err(|mut e| {
+            e.msg = format!("{} during Newton iteration {} at INST={t}", e.msg, iters + 1);
+            e
+        })?;
         step.correct()?;
         iters += 1;
     }
@@ -242,6 +280,18 @@ mod tests {
         let conv = Convergence { iter_max: 2, ..Convergence::default() };
         let e = newton(&args(), &conv, false, 3.0, &mut s).unwrap_err();
         assert!(e.msg.contains("did not converge at INST=3 in 2 iterations"), "{}", e.msg);
+    }
+
+    #[test]
+    fn newton_stops_at_the_runs_deadline() {
+        let mut s = Sqrt2 { x: 1.0 };
+        let deadline = crate::diag::Deadline::after(std::time::Duration::ZERO);
+        let e =
+            crate::diag::with_deadline(Some(deadline), || newton(&args(), &Convergence::default(), false, 2.0, &mut s))
+                .unwrap_err();
+        assert_eq!(e.kind, crate::diag::ErrorKind::TimeLimit);
+        assert_eq!(e.msg, "time limit of 0 s exceeded during Newton iteration 1 at INST=2");
+        assert_eq!(s.x, 1.0, "no correction past the deadline");
     }
 
     #[test]

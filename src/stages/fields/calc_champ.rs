@@ -123,7 +123,8 @@ fn to_nodes(mesh: &Mesh, cells: &[Option<Vec<f64>>], ncmp: usize) -> Vec<f64> {
 
 /// The components of SIEQ_* we compute (Code_Aster's SIEQ also has the
 /// principal directions VECT_*, not computed yet).
-const SIEQ_COMPONENTS: [&str; 8] = ["VMIS", "TRESCA", "PRIN_1", "PRIN_2", "PRIN_3", "VMIS_SG", "TRSIG", "TRIAX"];
+pub(super) const SIEQ_COMPONENTS: [&str; 8] =
+    ["VMIS", "TRESCA", "PRIN_1", "PRIN_2", "PRIN_3", "VMIS_SG", "TRSIG", "TRIAX"];
 
 /// Principal stresses (ascending) of a symmetric tensor given as
 /// [xx, yy, zz, xy, (xz, yz)]: nalgebra's symmetric eigenvalues.
@@ -136,7 +137,7 @@ fn principal(s: &[f64]) -> [f64; 3] {
 }
 
 /// SIEQ components of one stress tensor.
-fn equivalent_stresses(s: &[f64]) -> Vec<f64> {
+pub(super) fn equivalent_stresses(s: &[f64]) -> Vec<f64> {
     let tr = s[0] + s[1] + s[2];
     let m = tr / 3.0;
     let shear: f64 = s.iter().skip(3).map(|v| v * v).sum();
@@ -161,26 +162,42 @@ pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         "SIEQ_NOEU",
     ];
     let rc = a.req_concept("RESULTAT")?;
-    let mut wanted = Vec::new();
-    for kw in ["CONTRAINTE", "DEFORMATION", "CRITERES"] {
-        for o in a.texts(kw) {
-            if !DONE.contains(&o.as_str()) {
-                return Err(a.err(kw, format!("option {o} is not supported yet")));
-            }
-            wanted.push(o);
-        }
-    }
-    a.refuse(&["ENERGIE", "FORCE", "VARI_INTERNE", "ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"])?;
     let (model, chmat, mut steps) = {
         let r = rc.result()?;
         let chmat = r.material.clone().ok_or_else(|| a.err("RESULTAT", "the result has no material field"))?;
         (r.model.clone(), chmat, r.steps.clone())
     };
-    let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
-    let mesh = &p.mesh;
-    let md = p.modelisation;
+    if model.model()?.xfem.is_some() {
+        // The fields of an X-FEM result live on the sub-cells, with the Heaviside unknowns: the classical
+        // element computations below would ignore the enrichment.
+        return Err(a.err(
+            "RESULTAT",
+            format!("CALC_CHAMP on a result of the X-FEM model {} is not supported yet", model.label()),
+        ));
+    }
+    let hm = model.model()?.elements.iter().flatten().any(|e| e.modelisation.is_hm()) && model.model()?.xfem.is_none();
+    let mut wanted = Vec::new();
+    let kws: &[&str] = if hm {
+        &["CONTRAINTE", "DEFORMATION", "CRITERES", "VARI_INTERNE"]
+    } else {
+        &["CONTRAINTE", "DEFORMATION", "CRITERES"]
+    };
+    for kw in kws {
+        for o in a.texts(kw) {
+            let known = if hm { super::hm::OPTIONS.contains(&o.as_str()) } else { DONE.contains(&o.as_str()) };
+            if !known {
+                return Err(a.err(kw, format!("option {o} is not supported yet")));
+            }
+            wanted.push(o);
+        }
+    }
+    a.refuse(&["ENERGIE", "FORCE", "ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"])?;
+    if !hm {
+        a.refuse(&["VARI_INTERNE"])?;
+    }
+    let mesh = model.model()?.current_mesh();
     let restrict = if a.has("GROUP_MA") || a.has("MAILLE") {
-        Some(crate::stages::select::select_cells(mesh, a, &model.model()?.mesh_concept.label())?)
+        Some(crate::stages::select::select_cells(&mesh, a, &model.model()?.mesh_concept.label())?)
     } else {
         None
     };
@@ -201,6 +218,15 @@ pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         "EXCIT",
     ])?;
     let orders = a.ints("NUME_ORDRE");
+    if hm {
+        super::hm::calc_champ_hm(a, &wanted, &mut steps, &model, &chmat, &only, &orders)?;
+        let r = rc.result()?;
+        let data = ResultData { model: r.model.clone(), material: r.material.clone(), loads: r.loads.clone(), steps };
+        return Ok(Some(ConceptData::Result(data)));
+    }
+    let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
+    let mesh = &p.mesh;
+    let md = p.modelisation;
     for step in steps.iter_mut() {
         if !orders.is_empty() && !orders.contains(&step.nume_ordre) {
             continue;

@@ -47,7 +47,7 @@ pub fn crea_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 
 fn affe(a: &Args) -> Result<FieldData> {
     let (loc, func) = type_cham(a)?;
-    if loc != "ELEM" && (loc != "NOEU" || func) {
+    if !matches!(loc, "ELEM" | "ELGA") && (loc != "NOEU" || func) || (loc == "ELGA" && func) {
         return Err(a.err("TYPE_CHAM", format!("TYPE_CHAM='{}' is not supported yet", a.text("TYPE_CHAM").unwrap())));
     }
     let (mesh_concept, on_model): (ConceptRef, Option<Vec<bool>>) = match a.concept("MODELE") {
@@ -130,6 +130,25 @@ fn affe(a: &Args) -> Result<FieldData> {
             components: comps,
             values: values.into_iter().flat_map(|v| v.unwrap_or(vec![f64::NAN; n])).collect(),
         }
+    } else if loc == "ELGA" {
+        // The same values at every integration point of the cell's element.
+        let mo = a
+            .concept("MODELE")
+            .ok_or_else(|| a.err("TYPE_CHAM", "a field on integration points (ELGA) needs MODELE"))?;
+        let m = mo.model()?;
+        let mut cells = Vec::with_capacity(values.len());
+        for (c, v) in values.into_iter().enumerate() {
+            let npts = match (&m.elements[c], v.is_some()) {
+                // Skin elements carry no stresses: the field lives on the bulk ones.
+                (Some(e), true) if e.role == crate::concepts::model::Role::Bulk => {
+                    crate::stages::core::hm::elga_points(e.modelisation, mesh.cell_types[c])
+                        .map_err(|msg| a.err("TYPE_CHAM", format!("cell {}: {msg}", mesh.cell_names[c])))?
+                }
+                _ => 0,
+            };
+            cells.push(v.filter(|_| npts > 0).map(|v| v.repeat(npts)));
+        }
+        Field::Elga { components: comps, cells }
     } else {
         Field::Elem { components: comps, cells: values }
     };

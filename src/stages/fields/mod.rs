@@ -3,6 +3,7 @@
 
 pub mod calc_champ;
 pub mod crea_champ;
+pub mod hm;
 pub mod repere;
 
 pub use calc_champ::calc_champ;

@@ -9,6 +9,7 @@
 //! is an error; an empty result is a warning and creates no group. Code_Aster
 //! modifies the mesh of MAILLAGE in place even without `reuse`; so do we.
 
+pub mod crea_maillage;
 pub mod orient;
 
 use crate::catalog::args::Args;

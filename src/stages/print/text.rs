@@ -13,7 +13,7 @@ fn num(v: f64) -> String {
     if v.is_nan() {
         format!("{:>13}", "-")
     } else {
-        format!("{:>13}", crate::interp::format::sci(v, 5, true))
+        format!("{:>13}", crate::text::sci(v, 5, true))
     }
 }
 

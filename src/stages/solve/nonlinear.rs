@@ -21,6 +21,10 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         if mo.model()?.xfem.is_some() {
             return super::xfem::stat_non_line_xfem(ctx, a, &mo);
         }
+        let hm = mo.model()?.elements.iter().flatten().any(|e| e.modelisation.is_hm());
+        if hm {
+            return super::hm::stat_non_line_hm(ctx, a, &mo);
+        }
     }
     a.refuse(&["CONTACT", "SCHEMA_THM"])?;
     refuse_unsupported_options(a)?;
@@ -50,7 +54,7 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         // Start from the previous state; the imposed values of this step come with the map.
         let x: Vec<f64> = map.free_to_full.iter().map(|&d| u[d]).collect();
         let fact = match solve::factorize(k.as_ref(), &opts) {
-            Ok((f, ..)) => f,
+            Ok(f) => f,
             Err(_) => {
                 // Let the solver report which unknowns are singular.
                 solve_reduced(a, &p, &map, &k, &rhs, &opts)?;
@@ -61,7 +65,7 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let Converged { iters, rel: residual, .. } = newton(a, &conv, false, t, &mut step)?;
         let x = step.x;
         u = map.expand(&x);
-        let (ts, rs) = (crate::interp::format::sci(t, 6, false), crate::interp::format::sci(residual, 3, false));
+        let (ts, rs) = (crate::text::sci(t, 6, false), crate::text::sci(residual, 3, false));
         log.push_str(&format!("  {n:>4}  {ts:>14}  {iters:>5}  {rs:>14}\n"));
         steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(&p, &u, true)? });
     }

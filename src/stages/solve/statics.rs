@@ -10,7 +10,7 @@ use crate::stages::Ctx;
 
 use crate::stages::core::assembly::{assemble, System};
 use crate::stages::core::problem::problem;
-use crate::stages::core::solver::{solve_reduced, solver_options, step_fields};
+use crate::stages::core::solver::{solve_reduced, solver_log, solveur, step_fields};
 use std::time::Instant;
 pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     if let Some(mo) = a.concept("MODELE") {
@@ -34,7 +34,8 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let System { map, k, rhs, t_numbering, t_assembly } = assemble(a, &p, &model, inst)?;
 
     // Solve.
-    let sol = solve_reduced(a, &p, &map, &k, &rhs, &solver_options(a)?)?;
+    let sv = solveur(a)?;
+    let sol = solve_reduced(a, &p, &map, &k, &rhs, &sv.opts)?;
     let u = map.expand(&sol.x);
 
     // Fields.
@@ -52,11 +53,12 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         sol.residual,
         t_numbering.as_secs_f64(),
         t_assembly.as_secs_f64(),
-        (sol.timings.symbolic + sol.timings.factorization).as_secs_f64(),
+        (sol.timings.symbolic + sol.timings.factorization + sol.timings.condition).as_secs_f64(),
         sol.timings.solve.as_secs_f64(),
         t_post.as_secs_f64(),
         t_all.elapsed().as_secs_f64()
     ));
+    ctx.io.mess(&solver_log(&sv, &sol.info, sol.residual, sol.refinements));
     let loads = a.facts("EXCIT").iter().filter_map(|o| o.concept("CHARGE")).collect();
     Ok(Some(ConceptData::Result(ResultData {
         model,

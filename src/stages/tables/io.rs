@@ -2,8 +2,8 @@
 
 use crate::concepts::table::{Cell, ColType, Column, Table};
 use crate::diag::{Error, Result};
-use crate::interp::format::{percent, to_str};
-use crate::interp::Value;
+use crate::text::float_repr;
+use crate::text::fortran::RealFormat;
 
 /// Split on one or more occurrences of `sep`, ignoring leading/trailing ones.
 fn msplit(line: &str, sep: &str) -> Vec<String> {
@@ -84,7 +84,7 @@ pub fn columns_from_rows(names: &[String], rows: &[Vec<Cell>]) -> Vec<Column> {
                 .map(|c| match (ty, c) {
                     (ColType::R, Cell::Int(i)) => Cell::Real(i as f64),
                     (ColType::K(_), Cell::Int(i)) => Cell::Text(i.to_string()),
-                    (ColType::K(_), Cell::Real(r)) => Cell::Text(to_str(&Value::Float(r))),
+                    (ColType::K(_), Cell::Real(r)) => Cell::Text(float_repr(r)),
                     (_, c) => c,
                 })
                 .collect();
@@ -256,33 +256,21 @@ fn split_typed(line: &str, types: &[ColType]) -> Option<Vec<String>> {
     Some(out)
 }
 
-/// Convert a Fortran-like real format (`E12.5`, `1PE12.5`, `F10.3`) to printf.
-fn real_format(fmt: &str) -> String {
-    let f = fmt.trim().trim_start_matches("1P").trim_start_matches("1p");
-    let (letter, rest) = f.split_at(f.chars().next().map(|c| c.len_utf8()).unwrap_or(0));
-    let conv = match letter.to_ascii_uppercase().as_str() {
-        "F" => "f",
-        "G" => "G",
-        _ => "E",
-    };
-    format!("%{rest}{conv}")
-}
-
-fn cell_text(c: &Cell, fmt_r: &str, format: &str) -> String {
+fn cell_text(c: &Cell, fmt_r: &RealFormat, format: &str) -> String {
     match c {
         // AGRAF is TABLEAU with a backslash before the empty-cell marker
         // (Code_Aster's `ReprTable`).
         Cell::Empty if format == "AGRAF" => "\\-".into(),
         Cell::Empty => "-".into(),
         Cell::Int(i) => i.to_string(),
-        Cell::Real(r) => percent(&real_format(fmt_r), &Value::Float(*r)).unwrap_or_else(|_| r.to_string()),
+        Cell::Real(r) => fmt_r.format(*r),
         Cell::Text(t) => t.clone(),
     }
 }
 
 /// The table as text: `TABLEAU` (aligned columns), `ASTER` (re-readable) or
 /// `AGRAF` (TABLEAU, empty cells written `\-`).
-pub fn write(t: &Table, name: &str, format: &str, fmt_r: &str, params: Option<&[String]>) -> String {
+pub fn write(t: &Table, name: &str, format: &str, fmt_r: &RealFormat, params: Option<&[String]>) -> String {
     let cols: Vec<&Column> = match params {
         Some(p) => p.iter().filter_map(|n| t.columns.iter().find(|c| &c.name == n)).collect(),
         None => t.columns.iter().collect(),
@@ -356,7 +344,7 @@ mod tests {
         t.add_column("N", ColType::I, vec![Cell::Int(1), Cell::Empty]).unwrap();
         t.add_column("NOM", ColType::K(8), vec![Cell::Text("a b".into()), Cell::Text("c".into())]).unwrap();
         t.add_column("V", ColType::R, vec![Cell::Real(1.5), Cell::Real(-2.0e-7)]).unwrap();
-        let text = write(&t, "T", "ASTER", "E12.5", None);
+        let text = write(&t, "T", "ASTER", &RealFormat::default(), None);
         let back = read_aster(&text, 1).unwrap();
         assert_eq!(back.columns[0].cells, t.columns[0].cells);
         assert_eq!(back.columns[1].cells, t.columns[1].cells);

@@ -7,10 +7,9 @@ use crate::catalog::args::{Args, Val};
 use crate::concepts::table::{Cell, ColType, Column, Table};
 use crate::concepts::ConceptData;
 use crate::diag::{Error, Result};
-use crate::interp::format::percent;
-use crate::interp::Value;
 use crate::stages::select::{filter_rows, filtered};
 use crate::stages::Ctx;
+use crate::text::fortran::RealFormat;
 use io as table_io;
 
 fn cell_of(v: &Val) -> Cell {
@@ -159,13 +158,14 @@ pub fn lire_table(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 
 // ------------------------------------------------------------------ CALC_TABLE
 
-fn format_key(c: &Cell, fmt_r: Option<&str>) -> String {
+/// The FORMAT_R of an occurrence, checked.
+fn real_format(occ: &Args) -> Result<Option<RealFormat>> {
+    occ.text("FORMAT_R").map(|f| RealFormat::parse(f).map_err(|e| occ.err("FORMAT_R", e))).transpose()
+}
+
+fn format_key(c: &Cell, fmt_r: Option<&RealFormat>) -> String {
     match (c, fmt_r) {
-        (Cell::Real(r), Some(f)) => {
-            let f = f.trim().trim_start_matches("1P");
-            let conv = if f.starts_with(['F', 'f']) { "f" } else { "E" };
-            percent(&format!("%{}{conv}", &f[1..]), &Value::Float(*r)).unwrap_or_default()
-        }
+        (Cell::Real(r), Some(f)) => f.format(*r),
         (Cell::Real(r), None) => format!("{r:e}"),
         (Cell::Int(i), _) => i.to_string(),
         (Cell::Text(t), _) => t.trim_end().to_string(),
@@ -175,7 +175,14 @@ fn format_key(c: &Cell, fmt_r: Option<&str>) -> String {
 
 /// Merge `b` into `a`: rows whose key values are unique in both tables are
 /// merged (b's values win), the other rows of `b` are appended.
-fn comb(a: &Table, b: &Table, keys: &[String], restrict: bool, fmt_r: Option<&str>, occ: &Args) -> Result<Table> {
+fn comb(
+    a: &Table,
+    b: &Table,
+    keys: &[String],
+    restrict: bool,
+    fmt_r: Option<&RealFormat>,
+    occ: &Args,
+) -> Result<Table> {
     let mut out = a.clone();
     for c in &b.columns {
         if out.column(&c.name).is_none() {
@@ -373,7 +380,7 @@ pub fn calc_table(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                     &other,
                     &occ.texts("NOM_PARA"),
                     occ.text("RESTREINT") == Some("OUI"),
-                    occ.text("FORMAT_R"),
+                    real_format(occ)?.as_ref(),
                     occ,
                 )?
             }
@@ -547,7 +554,7 @@ pub fn impr_table(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         &t,
         &name,
         format,
-        a.text("FORMAT_R").unwrap_or("E12.5"),
+        &real_format(a)?.unwrap_or_default(),
         if params.is_empty() { None } else { Some(&params) },
     );
     let unit = a.int("UNITE").unwrap_or(8);

@@ -104,7 +104,7 @@ pub fn test_fonction(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             };
             r.map_err(|e| e.at(occ.span))?
         };
-        let at: Vec<String> = x.iter().map(|v| crate::interp::format::float_repr(*v)).collect();
+        let at: Vec<String> = x.iter().map(|v| crate::text::float_repr(*v)).collect();
         let title = format!("FONCTION {} VALE_PARA ({})", c.label(), at.join(", "));
         check(ctx, occ, Scalar::R(v), "XXXX", &title)?;
     }

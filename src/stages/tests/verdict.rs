@@ -11,8 +11,8 @@
 
 use crate::catalog::args::{Args, Val};
 use crate::diag::Result;
-use crate::interp::format::float_repr;
 use crate::stages::{CheckRecord, Ctx};
+use crate::text::float_repr;
 
 /// A computed value under test.
 #[derive(Debug, Clone)]
@@ -147,7 +147,7 @@ fn compare(
     };
     let mut serr = float_repr(error);
     if serr.len() > 15 {
-        serr = crate::interp::format::sci(error, 6, false);
+        serr = crate::text::sci(error, 6, false);
     }
     let mut stol = float_repr(tol);
     if relative {

@@ -75,6 +75,32 @@ fn rigid_body_motion_is_reported_as_singular() {
     assert!(err.contains(" DY"), "{err}");
 }
 
+/// NPREC (Code_Aster's meaning: a pivot losing more than NPREC digits is singular) stops the same free
+/// system by naming the worst unknown, node and component; with the check off (NPREC < 0) an unbalanced
+/// load on it has no solution, and RESI_RELA stops it after the solve.
+#[test]
+fn nprec_and_resi_rela_stop_an_ill_posed_case() {
+    let (code, err) = run(
+        "nprec",
+        "CHMAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=ACIER))\n\
+         CH = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='GAUCHE', DX=0.))\n\
+         R = MECA_STATIQUE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=CH), SOLVEUR=_F(NPREC=6))\n",
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(
+        err.contains("the factorization lost more than NPREC=6 significant digits at unknown N") && err.contains(" DY"),
+        "{err}"
+    );
+    let (code, err) = run(
+        "resi_rela",
+        "CHMAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=ACIER))\n\
+         CH = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='GAUCHE', DX=0.), FORCE_NODALE=_F(GROUP_NO='DROITE', FY=1.))\n\
+         R = MECA_STATIQUE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=CH), SOLVEUR=_F(NPREC=-1, RESI_RELA=1.e-6))\n",
+    );
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("<F>") && err.contains("exceeds RESI_RELA=1.0e-6"), "{err}");
+}
+
 #[test]
 fn component_foreign_to_the_model() {
     let (code, err) = run(

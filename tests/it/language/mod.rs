@@ -2,4 +2,6 @@
 //! and the bounded parser fuzzer.
 mod bad_input;
 mod fuzz_parser;
+mod fuzz_pipeline;
 mod python_subset;
+mod robustness;

@@ -18,7 +18,7 @@ fn run(export: &Path, tag: &str) -> (usize, usize, usize, String, String) {
     let nook = o.records.iter().filter(|r| r.ok == Some(false)).count();
     let skipped = o.records.iter().filter(|r| r.ok.is_none()).count();
     let _ = std::fs::remove_dir_all(&out);
-    (ok, nook, skipped, o.diagnostic, mess)
+    (ok, nook, skipped, o.diagnostic.to_string(), mess)
 }
 
 /// The real numbers after `label` in the message file, in order.

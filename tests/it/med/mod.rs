@@ -1,5 +1,6 @@
 //! Meshes and results on disk: MED round trips, the reference MED tools and meshio, the mesh stages
-//! (LIRE_MAILLAGE, DEFI_GROUP, `aster mesh`), and the printed formats (RESULTAT, GMSH, tables).
+//! (LIRE_MAILLAGE, DEFI_GROUP, CREA_MAILLAGE, `aster mesh`), and the printed formats (RESULTAT, GMSH, tables).
+mod crea_maillage;
 mod mesh_stages;
 mod print_formats;
 mod roundtrip;

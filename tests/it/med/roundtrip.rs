@@ -266,7 +266,10 @@ fn all_cell_types_roundtrip_in_code_aster_order() {
     let out = tmp.join("all.med");
     med::write_mesh(&out, &m, "ALLTYPES").unwrap();
     let b = med::read_mesh(&out, None).unwrap();
-    // Read back in Code_Aster order: by MED geometry code.
+    // Read back in Code_Aster 2025's order (MeshReader): by its type order, not by MED geometry code
+    // (which would put PYRAM5 before PENTA6 and HEXA8 before TETRA10).
+    let names: Vec<String> = CellType::ALL.iter().map(|t| format!("C{}", t.name())).collect();
+    assert_eq!(b.cell_names, names);
     let mut order: Vec<usize> = (0..m.ncells()).collect();
     order.sort_by_key(|&c| MedType::rank(m.cell_types[c]));
     let new_of_old: BTreeMap<usize, usize> = order.iter().enumerate().map(|(new, &old)| (old, new)).collect();

@@ -120,7 +120,7 @@ fn run_variant(dir: &Path, base: &str, label: &str, delta: f64, order: i64) -> R
     Row {
         label: label.to_string(),
         delta,
-        diagnostic: o.diagnostic.clone(),
+        diagnostic: o.diagnostic.to_string(),
         ok: o.ok_count(),
         nook: o.nook_count(),
         unknowns: int_after(&mess, "unknowns  :"),

@@ -1,8 +1,10 @@
 //! The X-FEM library and stages on the real meshes: level sets and enrichment, TOPOSE cutting (quadratic
-//! and linear parents), mortar packets, the cohesive law, and interfaces near or through nodes.
+//! and linear parents), mortar packets, the cohesive law, interfaces near or through nodes, and POST_ERREUR
+//! on a cut cell.
 mod cohesive;
 mod hard_cases;
 mod levelsets;
 mod mortar;
+mod post_erreur;
 mod topose;
 mod topose_linear;

@@ -104,6 +104,7 @@ pub fn run_log(command: &str, model: &ConceptRef, su: &Setup, el: &Elements, run
         "step", "INST", "iters", "RESI_GLOB_RELA", "RESI_GLOB_MAXI"
     );
     s.push_str(&run.log);
+    s.push_str(&run.solver);
     let _ = writeln!(
         s,
         "    time      : elements {:.3} s, assembly {:.3} s, factorization and solves {:.3} s, total {:.3} s",
@@ -196,4 +197,68 @@ pub fn depl_fields(s: &Setup, x: &[f64]) -> BTreeMap<String, Field> {
     let mut f = BTreeMap::new();
     f.insert("DEPL".to_string(), Field::Node { components: comps, values });
     f
+}
+
+/// SIEF_ELGA of an X-FEM solution: σ = D ε(u) at the bulk points of every model cell, in the order the
+/// solver integrates them (the sub-cell points of a cut cell, sub-cell after sub-cell; the RIGI points
+/// elsewhere), u recomposed from the standard and Heaviside unknowns of the point's region.
+pub fn sief_field(a: &crate::catalog::args::Args, s: &Setup, x: &[f64]) -> crate::diag::Result<Field> {
+    use crate::xfem::discrete::{bulk_points, real_gradients, BulkPoint};
+    let (mesh, xm, xd, md) = (&*s.mesh, &*s.xm, &s.xd, s.md);
+    let ndim = xd.ndim;
+    let nsig = md.nsig();
+    let mut cells = vec![None; mesh.ncells()];
+    for &c in &s.model_cells {
+        let name = &mesh.cell_names[c];
+        let bad = |e: String| crate::diag::Error::runtime(format!("cell {name}: {e}")).at(a.span);
+        let m = s.material(a, c)?;
+        let (law, _) = crate::stages::core::problem::elastic_of(&m, name).map_err(|e| e.at(a.span))?;
+        let d = law.hooke(md);
+        let t = mesh.cell_types[c];
+        let nodes = &mesh.cells[c];
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let pts: Vec<BulkPoint> = if xm.cells.contains_key(&c) {
+            bulk_points(t, &coords, xm, c).map_err(bad)?
+        } else {
+            let rule = crate::fem::elasticity::rigi_rule(t);
+            rule.points.iter().map(|q| BulkPoint { xi: *q, w: 0.0, region: 0 }).collect()
+        };
+        let mut vals = Vec::with_capacity(pts.len() * nsig);
+        for p in &pts {
+            let (_, g, _) = real_gradients(t, &coords, &p.xi).ok_or_else(|| bad("degenerate cell".into()))?;
+            // Displacement gradient of the recomposed field.
+            let mut du = [[0.0; 3]; 3];
+            for (ia, &n) in nodes.iter().enumerate() {
+                let b = xd.std[n].expect("node of a model cell");
+                for i in 0..ndim {
+                    let mut v = x[b + i];
+                    for (j, &sb) in xd.sets[n].iter().enumerate() {
+                        let psi = xm.psi(n, j, p.region);
+                        if psi != 0.0 {
+                            v += psi * x[sb + i];
+                        }
+                    }
+                    for k in 0..ndim {
+                        du[i][k] += g[ia][k] * v;
+                    }
+                }
+            }
+            // Engineering strains in Code_Aster's order: xx yy zz xy (xz yz).
+            let mut eps = [0.0; 6];
+            for i in 0..ndim {
+                eps[i] = du[i][i];
+            }
+            eps[3] = du[0][1] + du[1][0];
+            if ndim == 3 {
+                eps[4] = du[0][2] + du[2][0];
+                eps[5] = du[1][2] + du[2][1];
+            }
+            for r in d.iter().take(nsig) {
+                vals.push((0..nsig).map(|q| r[q] * eps[q]).sum::<f64>());
+            }
+        }
+        cells[c] = Some(vals);
+    }
+    let components = md.sigma_names().iter().map(|n| n.to_string()).collect();
+    Ok(Field::Elga { components, cells })
 }

@@ -12,7 +12,7 @@ use crate::mesh::Mesh;
 use crate::solve::{Method, SolverOptions};
 use crate::stages::core::newton::Convergence;
 use crate::stages::core::problem::mat_param;
-use crate::stages::core::solver::solver_options;
+use crate::stages::core::solver::{solveur, Solveur};
 use crate::xfem::czm::CzmParams;
 use crate::xfem::discrete::XDofs;
 use crate::xfem::model::{ContactKind, XfemModel};
@@ -31,6 +31,8 @@ pub struct Setup {
     pub hm: bool,
     pub conv: Convergence,
     pub opts: SolverOptions,
+    /// SOLVEUR as given, for the log.
+    pub solveur: Solveur,
     pub chmat: ConceptRef,
     mats: Vec<Option<ConceptRef>>,
     pub zones: Vec<Zone>,
@@ -97,8 +99,10 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
     };
     check_behaviour(a, modelisation, hm)?;
     let conv = Convergence::from_args(a)?;
-    let mut opts = solver_options(a)?;
-    opts.method = Method::Lu;
+    let solveur = solveur(a)?;
+    // The tangent is a symmetric saddle point (multipliers λ, w, μ beside the displacements): LDLᵀ.
+    let mut opts = solveur.opts;
+    opts.method = Method::Ldlt;
 
     let chmat = a.req_concept("CHAM_MATER")?;
     let mats: Vec<Option<ConceptRef>> = match &*chmat.data() {
@@ -122,6 +126,7 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
         hm,
         conv,
         opts,
+        solveur,
         chmat,
         mats,
         zones,

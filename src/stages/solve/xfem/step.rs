@@ -2,7 +2,7 @@
 //! Newton loop of the core on an `XfemStep`, then the update of the cohesive internal variables.
 
 use super::assemble::{Elements, Law, Lin, Zone};
-use super::report::{depl_fields, label, zone_state};
+use super::report::{depl_fields, label, sief_field, zone_state};
 use super::setup::Setup;
 use crate::catalog::args::Args;
 use crate::concepts::result::Step;
@@ -10,11 +10,15 @@ use crate::concepts::ConceptRef;
 use crate::diag::{Error, Result};
 use crate::fem::assembly::{Assembler, ElementDofs, SparsityPattern};
 use crate::fem::dofs::DofMap;
-use crate::solve::{self, scaling::equilibrate};
+use crate::solve::{self, Analysis};
 use crate::stages::core::newton::{inf_norm, newton, Converged, NewtonStep};
+use crate::stages::core::solver::{solve_error, solver_log};
 use crate::xfem::czm::{self, CzmState};
 use std::fmt::Write as _;
 use std::time::{Duration, Instant};
+
+/// Size of the reduced tangent from which it is factorised by LDLᵀ rather than LU.
+pub const LDLT_FROM: usize = 20_000;
 
 /// What the instants produced: the stored steps, the per-step log, and what the final report needs.
 #[derive(Default)]
@@ -28,6 +32,8 @@ pub struct Run {
     pub pinned: Vec<String>,
     /// Steps at which the reactions vanished and the relative criterion used the largest earlier one.
     pub vanished_steps: Vec<usize>,
+    /// The solver's log line (of the last factorization).
+    pub solver: String,
 }
 
 /// Solve every instant after the first (the initial state, stored as order 0 unless `statics`).
@@ -37,11 +43,13 @@ pub fn run(a: &Args, model: &ConceptRef, s: &Setup, el: &Elements, times: &[f64]
     let mut x = vec![0.0; xd.n];
     let mut run = Run::default();
     if !statics {
-        run.steps.push(Step { nume_ordre: 0, inst: times[0], fields: depl_fields(s, &x) });
+        run.steps.push(Step { nume_ordre: 0, inst: times[0], fields: step_fields(a, s, &x)? });
     }
     // Largest reference force of the converged steps: the scale of the
     // relative criterion once the forces vanish (a fully broken interface).
     let mut ref_hist: f64 = 0.0;
+    // The symbolic analysis, reused across Newton iterations and instants while the pattern holds.
+    let mut analysis: Option<Analysis> = None;
     for (n, &t) in times.iter().enumerate().skip(1) {
         let (cons, hydr, pins) = super::conditions::constraints(a, model, s, t)?;
         if n == 1 {
@@ -74,7 +82,8 @@ pub fn run(a: &Args, model: &ConceptRef, s: &Setup, el: &Elements, times: &[f64]
             ref_hist,
             rf: Vec::new(),
             k: None,
-            scale: Vec::new(),
+            analysis: &mut analysis,
+            solved: None,
             reactions: 0.0,
             vanished: false,
             t_asm: Duration::ZERO,
@@ -83,6 +92,9 @@ pub fn run(a: &Args, model: &ConceptRef, s: &Setup, el: &Elements, times: &[f64]
         let Converged { iters, rel, abs } = newton(a, &s.conv, statics, t, &mut step)?;
         run.t_asm += step.t_asm;
         run.t_fact += step.t_fact;
+        if let Some((info, res, refs)) = &step.solved {
+            run.solver = solver_log(&s.solveur, info, *res, *refs);
+        }
         if !statics || s.conv.converged(iters, rel, abs) {
             ref_hist = ref_hist.max(step.reactions);
             if step.vanished {
@@ -105,19 +117,33 @@ pub fn run(a: &Args, model: &ConceptRef, s: &Setup, el: &Elements, times: &[f64]
         let _ = writeln!(
             run.log,
             "  {n:>4}  {:>14}  {iters:>5}  {:>14}  {:>14}",
-            crate::interp::format::sci(t, 6, false),
-            crate::interp::format::sci(rel, 3, false),
-            crate::interp::format::sci(abs, 3, false)
+            crate::text::sci(t, 6, false),
+            crate::text::sci(rel, 3, false),
+            crate::text::sci(abs, 3, false)
         );
         run.log.push_str(&zone_state(s, el, &states, &x));
-        run.steps.push(Step { nume_ordre: n as i64, inst: t, fields: depl_fields(s, &x) });
+        run.steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(a, s, &x)? });
     }
     Ok(run)
 }
 
+/// The fields stored at a step: DEPL, and SIEF_ELGA unless MECA_STATIQUE's OPTION='SANS' asks for none
+/// (hydro-mechanical models, whose SIEF_ELGA would also hold the hydraulic stresses, get none yet).
+fn step_fields(
+    a: &Args,
+    s: &Setup,
+    x: &[f64],
+) -> Result<std::collections::BTreeMap<String, crate::concepts::result::Field>> {
+    let mut f = depl_fields(s, x);
+    if !s.hm && a.text_if_declared("OPTION") != Some("SANS") {
+        f.insert("SIEF_ELGA".to_string(), sief_field(a, s, x)?);
+    }
+    Ok(f)
+}
+
 /// One instant's Newton step: the residual and tangent of the bulk, the mortar couplings and the
-/// cohesive laws at the current state, on the reduced unknowns; the correction from an LU of the
-/// symmetrically equilibrated tangent.
+/// cohesive laws at the current state, on the reduced unknowns; the correction from an LDLᵀ of the
+/// tangent (equilibrated, refined; see `solve`), whose symbolic analysis is kept while the pattern holds.
 struct XfemStep<'s> {
     a: &'s Args,
     s: &'s Setup,
@@ -128,10 +154,12 @@ struct XfemStep<'s> {
     states: &'s [CzmState],
     x: Vec<f64>,
     ref_hist: f64,
-    /// Of the last residual: the reduced residual, the scaled tangent and its scaling.
+    /// Of the last residual: the reduced residual and the tangent.
     rf: Vec<f64>,
     k: Option<faer::sparse::SparseColMat<usize, f64>>,
-    scale: Vec<f64>,
+    analysis: &'s mut Option<Analysis>,
+    /// Of the last solve: what the factorization did, the relative residual and the refinement steps.
+    solved: Option<(solve::FactorInfo, f64, usize)>,
     /// Largest reaction at a prescribed unknown, and whether it vanished against the earlier steps.
     reactions: f64,
     vanished: bool,
@@ -186,9 +214,6 @@ impl NewtonStep for XfemStep<'_> {
             asm.add_matrix(&dofs, &ke);
         }
         let (k, _) = asm.finish();
-        // Symmetric equilibration: the system mixes stiffnesses (E·h) with interface couplings of
-        // order 1; LU on the scaled matrix keeps the accuracy of the solution.
-        let (k, scale) = equilibrate(&k);
         self.t_asm += ta.elapsed();
         // Reduced residual and reference (reactions at prescribed unknowns).
         let mut rf = vec![0.0; self.map.nfree];
@@ -208,7 +233,6 @@ impl NewtonStep for XfemStep<'_> {
         let rel = if scale_ref > 0.0 { abs / scale_ref } else { abs };
         self.rf = rf;
         self.k = Some(k);
-        self.scale = scale;
         Ok((rel, abs))
     }
 
@@ -216,20 +240,23 @@ impl NewtonStep for XfemStep<'_> {
         let a = self.a;
         let Some(k) = self.k.take() else { return Err(Error::runtime("no tangent to solve with").at(a.span)) };
         let tf = Instant::now();
-        let fact = match solve::factorize(k.as_ref(), &self.s.opts) {
-            Ok((f, ..)) => f,
-            Err(e) => {
-                let dofs = match &e {
-                    solve::SolveError::Singular { dofs, .. } => dofs.clone(),
-                    _ => vec![],
-                };
-                let labels: Vec<String> =
-                    dofs.iter().take(6).map(|&d| label(self.s, self.map.free_to_full[d])).collect();
-                return Err(Error::runtime(format!("{e}; unknowns: {}", labels.join(", "))).at(a.span));
-            }
-        };
-        let neg: Vec<f64> = self.rf.iter().zip(&self.scale).map(|(v, s)| -v * s).collect();
-        let dx: Vec<f64> = fact.solve(&neg).iter().zip(&self.scale).map(|(v, s)| v * s).collect();
+        // Small tangents go to LU with partial pivoting: its cost is nothing there, and it solves the interface
+        // rows by their own pivots, which keeps structural zeros exact (the opening of a closed interface is
+        // 0, not round-off). Large ones go to the symmetric LDLᵀ, several times cheaper in time and memory.
+        let mut opts = self.s.opts;
+        if k.nrows() < LDLT_FROM {
+            opts.method = solve::Method::Lu;
+        }
+        let opts = &opts;
+        let name = |d: usize| label(self.s, self.map.free_to_full[d]);
+        let err = |e| Error::runtime(solve_error(e, opts, &name)).at(a.span);
+        let mut fact = solve::factorize_with(k.as_ref(), opts, self.analysis).map_err(err)?;
+        let neg: Vec<f64> = self.rf.iter().map(|v| -v).collect();
+        let ts = Instant::now();
+        let (dx, res, refs) = solve::solve_refined_or_lu(&mut fact, k.as_ref(), &neg, opts).map_err(err)?;
+        fact.info.timings.solve = ts.elapsed();
+        solve::check_solution(k.as_ref(), &dx, &neg, res, opts).map_err(err)?;
+        self.solved = Some((fact.info.clone(), res, refs));
         self.t_fact += tf.elapsed();
         if dx.iter().any(|v| !v.is_finite()) {
             return Err(Error::runtime("the Newton correction is not finite (singular system)").at(a.span));

@@ -1,4 +1,8 @@
-//! POST_RELEVE_T (EXTRACTION): values of results and fields as a table.
+//! POST_RELEVE_T (EXTRACTION): values of results and fields as a table; POST_ERREUR (`erreur`): error
+//! norms of a field against reference formulas.
+
+mod erreur;
+pub use erreur::post_erreur;
 
 use crate::catalog::args::Args;
 use crate::concepts::result::{Field, Step};

@@ -1,0 +1,575 @@
+//! The saturated HM element: displacement on every node of the quadratic cell, pressure on its
+//! vertices with the linear cell's functions (`PRE1` on vertices only), integrated as the variant says.
+//!
+//! Local unknowns node by node: node `a` carries `DX DY [DZ]`, then `PRE1` when it is a vertex (the
+//! first `nvertices` nodes in Code_Aster's order). The internal forces are Code_Aster's (`assthm`):
+//!
+//! - displacement rows: `∫ Bᵀ (σ' + σ_p) − ∫ N g M`,
+//! - pressure rows: `∫ −N̂ (M⁺ − M⁻) + Δt ∇N̂ · (θ w⁺ + (1 − θ) w⁻)`,
+//!
+//! so that `F_int = F_ext` with the boundary flux `F_ext = −Δt ∫ N̂ q` ([`flux_load`]).
+
+use super::law::{update, Derivatives, IntegrationFailure, PointState};
+use super::material::Biot;
+use crate::fem::elasticity::{vertex_type, IsoElastic, Modelisation};
+use crate::fem::quadrature::aster_rule;
+use crate::fem::reference::shape_and_deriv;
+use crate::mesh::CellType;
+
+/// The kinematics of an HM modelisation: plane strain, axisymmetric, 3D.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kinematics {
+    DPlan,
+    Axis,
+    ThreeD,
+}
+
+impl Kinematics {
+    pub fn dim(self) -> usize {
+        if self == Kinematics::ThreeD {
+            3
+        } else {
+            2
+        }
+    }
+    /// The mechanical modelisation of `fem` with the same strain components.
+    pub fn mechanics(self) -> Modelisation {
+        match self {
+            Kinematics::DPlan => Modelisation::DPlan,
+            Kinematics::Axis => Modelisation::Axis,
+            Kinematics::ThreeD => Modelisation::ThreeD,
+        }
+    }
+}
+
+/// How the element integrates (Code_Aster's `INTTHM` attribute of the modelisation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Variant {
+    /// `*_HM`: every term at the points of the RIGI family (FPG9, FPG6, FPG27, FPG15, FPG21).
+    Full,
+    /// `*_HM_SI`: every term at the points of a reduced family (FPG4, FPG3, FPG8, FPG4, FPG6).
+    Reduced,
+    /// `*_HMD`: every term at the vertices only (`NOEU_S`): a diagonal storage matrix.
+    Lumped,
+    /// `*_HMS`: mechanics and the Darcy flux at the reduced family's points, the storage at the
+    /// vertices (`FPG4NOS`, ...).
+    Selective,
+}
+
+/// Which terms a point integrates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Role {
+    /// σ' + σ_p and the weight of the added fluid mass (displacement rows).
+    pub mech: bool,
+    /// The Darcy flux (pressure rows, ∇N̂).
+    pub flux: bool,
+    /// The change of fluid mass (pressure rows, N̂).
+    pub storage: bool,
+}
+
+const ALL: Role = Role { mech: true, flux: true, storage: true };
+
+/// The geometry of one integration point of a cell.
+#[derive(Debug, Clone)]
+pub struct Point {
+    /// Reference coordinates.
+    pub xi: [f64; 3],
+    /// Weight × |det J| (× r in AXIS).
+    pub w: f64,
+    pub x: [f64; 3],
+    /// Displacement functions (all nodes) and their real gradients.
+    pub n: Vec<f64>,
+    pub dn: Vec<[f64; 3]>,
+    /// Pressure functions (vertices) and their real gradients.
+    pub nh: Vec<f64>,
+    pub dnh: Vec<[f64; 3]>,
+    /// AXIS: the point lies on the axis (the hoop strain is then ∂u_r/∂r).
+    pub on_axis: bool,
+    pub role: Role,
+}
+
+/// The integration points of one cell, with the layout of its local unknowns.
+#[derive(Debug, Clone)]
+pub struct CellPoints {
+    pub kin: Kinematics,
+    pub variant: Variant,
+    pub cell: CellType,
+    /// The Code_Aster families whose points these are (`"FPG9"`, `"NOEU_S"`, `"FPG4+NOEU_S"`).
+    pub family: String,
+    pub points: Vec<Point>,
+    /// The first local unknown of each node.
+    pub first: Vec<usize>,
+    pub ndof: usize,
+}
+
+/// The families of a variant on a cell: (family of the Gauss points, with vertex points?).
+fn families(variant: Variant, t: CellType) -> Result<(Option<&'static str>, bool), String> {
+    use CellType::*;
+    let full = match t {
+        Quad8 => "FPG9",
+        Tria6 => "FPG6",
+        Hexa20 => "FPG27",
+        Tetra10 => "FPG15",
+        Penta15 => "FPG21",
+        Pyram13 => "FPG10",
+        _ => return Err(format!("HM elements are built on quadratic cells, not on {}", t.name())),
+    };
+    let reduced = match t {
+        Quad8 => "FPG4",
+        Tria6 => "FPG3",
+        Hexa20 => "FPG8",
+        Tetra10 => "FPG4",
+        Penta15 => "FPG6",
+        _ => "FPG10",
+    };
+    Ok(match variant {
+        Variant::Full => (Some(full), false),
+        Variant::Reduced => (Some(reduced), false),
+        Variant::Lumped => (None, true),
+        Variant::Selective => (Some(reduced), true),
+    })
+}
+
+/// The number of integration points of a variant on a cell (the points of SIEF_ELGA).
+pub fn point_count(variant: Variant, t: CellType) -> Result<usize, String> {
+    let (gauss, vertices) = families(variant, t)?;
+    let g = match gauss {
+        Some(f) => aster_rule(t, f).ok_or_else(|| format!("no {f} rule on {}", t.name()))?.len(),
+        None => 0,
+    };
+    Ok(g + if vertices { t.nvertices() } else { 0 })
+}
+
+impl CellPoints {
+    /// The points of a cell with node coordinates `coords` (Code_Aster's node order).
+    pub fn new(kin: Kinematics, variant: Variant, t: CellType, coords: &[[f64; 3]]) -> Result<CellPoints, String> {
+        let (gauss, vertices) = families(variant, t)?;
+        if t.dim() != kin.dim() {
+            return Err(format!("a {} cell is not a volume cell of a {}D model", t.name(), kin.dim()));
+        }
+        let mut rules = Vec::new();
+        if let Some(f) = gauss {
+            let r = aster_rule(t, f).ok_or_else(|| format!("no {f} rule on {}", t.name()))?;
+            let role = if variant == Variant::Selective { Role { storage: false, ..ALL } } else { ALL };
+            rules.push((r, role));
+        }
+        if vertices {
+            let r = aster_rule(t, "NOEU_S").ok_or_else(|| format!("no NOEU_S rule on {}", t.name()))?;
+            let role =
+                if variant == Variant::Selective { Role { mech: false, flux: false, storage: true } } else { ALL };
+            rules.push((r, role));
+        }
+        let family = match (gauss, vertices) {
+            (Some(g), true) => format!("{g}+NOEU_S"),
+            (Some(g), false) => g.to_string(),
+            _ => "NOEU_S".to_string(),
+        };
+        let dim = kin.dim();
+        let (nno, nv) = (t.nnodes(), t.nvertices());
+        let tv = vertex_type(t);
+        // AXIS: a point on the axis is weighed with 1e-3 of the cell's largest radius (Code_Aster's rule).
+        let r_max = coords.iter().map(|c| c[0]).fold(0.0, f64::max);
+        let mut points = Vec::new();
+        for (rule, role) in &rules {
+            for (k, (xi, w)) in rule.points.iter().zip(&rule.weights).enumerate() {
+                let mut n = vec![0.0; nno];
+                let mut dref = vec![[0.0; 3]; nno];
+                shape_and_deriv(t, xi, &mut n, &mut dref);
+                let mut nh = vec![0.0; nv];
+                let mut dhref = vec![[0.0; 3]; nv];
+                shape_and_deriv(tv, xi, &mut nh, &mut dhref);
+                let mut j = nalgebra::Matrix3::<f64>::identity();
+                let mut x = [0.0; 3];
+                for a in 0..nno {
+                    for i in 0..3 {
+                        x[i] += n[a] * coords[a][i];
+                    }
+                }
+                for r in 0..dim {
+                    for c in 0..dim {
+                        j[(r, c)] = (0..nno).map(|a| coords[a][r] * dref[a][c]).sum();
+                    }
+                }
+                let det = j.determinant();
+                let inv = j.try_inverse().filter(|_| det.is_finite() && det != 0.0).ok_or_else(|| {
+                    format!(
+                        "degenerate {} cell: Jacobian determinant {det:e} at point {} of {}",
+                        t.name(),
+                        k + 1,
+                        rule.name
+                    )
+                })?;
+                let grad = |d: &[f64; 3]| -> [f64; 3] {
+                    let mut g = [0.0; 3];
+                    for (i, gi) in g.iter_mut().enumerate().take(dim) {
+                        *gi = (0..dim).map(|c| d[c] * inv[(c, i)]).sum();
+                    }
+                    g
+                };
+                let dn = dref.iter().map(grad).collect();
+                let dnh = dhref.iter().map(grad).collect();
+                let mut wd = w * det.abs();
+                let mut on_axis = false;
+                if kin == Kinematics::Axis {
+                    if x[0] < -1e-12 * r_max {
+                        return Err(format!("AXIS: point {} of the cell has radius {:e} < 0", k + 1, x[0]));
+                    }
+                    if x[0] <= 1e-12 * r_max {
+                        on_axis = true;
+                        wd *= 1e-3 * r_max;
+                    } else {
+                        wd *= x[0];
+                    }
+                }
+                points.push(Point { xi: *xi, w: wd, x, n, dn, nh, dnh, on_axis, role: *role });
+            }
+        }
+        let mut first = Vec::with_capacity(nno);
+        let mut ndof = 0;
+        for a in 0..nno {
+            first.push(ndof);
+            ndof += dim + usize::from(a < nv);
+        }
+        Ok(CellPoints { kin, variant, cell: t, family, points, first, ndof })
+    }
+
+    /// The local index of displacement component `i` of node `a`.
+    pub fn u(&self, a: usize, i: usize) -> usize {
+        self.first[a] + i
+    }
+    /// The local index of the pressure of vertex `a`.
+    pub fn p(&self, a: usize) -> usize {
+        self.first[a] + self.kin.dim()
+    }
+
+    /// The strain-displacement rows of node `a` at point `pt`: `b[c][i]`, strain component `c`
+    /// (engineering), displacement component `i`.
+    fn b(&self, pt: &Point, a: usize) -> [[f64; 3]; 6] {
+        let d = pt.dn[a];
+        let mut b = [[0.0; 3]; 6];
+        b[0][0] = d[0];
+        b[1][1] = d[1];
+        b[3][0] = d[1];
+        b[3][1] = d[0];
+        match self.kin {
+            Kinematics::ThreeD => {
+                b[2][2] = d[2];
+                b[4][0] = d[2];
+                b[4][2] = d[0];
+                b[5][1] = d[2];
+                b[5][2] = d[1];
+            }
+            Kinematics::Axis => b[2][0] = if pt.on_axis { d[0] } else { pt.n[a] / pt.x[0] },
+            Kinematics::DPlan => {}
+        }
+        b
+    }
+
+    /// Strain, pressure and pressure gradient at a point from the local unknowns.
+    fn kinematics_at(&self, pt: &Point, ue: &[f64]) -> ([f64; 6], f64, [f64; 3]) {
+        let dim = self.kin.dim();
+        let mut eps = [0.0; 6];
+        for a in 0..self.cell.nnodes() {
+            let b = self.b(pt, a);
+            for (c, e) in eps.iter_mut().enumerate() {
+                *e += (0..dim).map(|i| b[c][i] * ue[self.u(a, i)]).sum::<f64>();
+            }
+        }
+        let mut p = 0.0;
+        let mut gp = [0.0; 3];
+        for (v, (nh, dnh)) in pt.nh.iter().zip(&pt.dnh).enumerate() {
+            let pv = ue[self.p(v)];
+            p += nh * pv;
+            for i in 0..3 {
+                gp[i] += dnh[i] * pv;
+            }
+        }
+        (eps, p, gp)
+    }
+
+    /// The strain (engineering shear) at a point from the local unknowns.
+    pub fn strain(&self, pt: &Point, ue: &[f64]) -> [f64; 6] {
+        self.kinematics_at(pt, ue).0
+    }
+
+    /// The state of every point for the unknowns `ue`, from the initial state of the material (the
+    /// strain and pressure of `ue` become the reference of the next step; no stress, no mass change).
+    pub fn initial_states(&self, mat: &Biot, ue: &[f64]) -> Vec<PointState> {
+        self.points
+            .iter()
+            .map(|pt| {
+                let (eps, p, _) = self.kinematics_at(pt, ue);
+                PointState { eps, p, ..PointState::initial(mat) }
+            })
+            .collect()
+    }
+}
+
+/// A time step as the element sees it.
+#[derive(Debug, Clone, Copy)]
+pub struct StepData {
+    pub dt: f64,
+    /// `SCHEMA_THM PARM_THETA`.
+    pub theta: f64,
+    /// The fluid's gravity at the end of the step (`PESA_*` × `PESA_MULT`).
+    pub gravity: [f64; 3],
+}
+
+/// The element's internal forces, tangent (row-major, `ndof × ndof`) and the states of its points at
+/// the end of the step.
+#[derive(Debug, Clone)]
+pub struct ElementOutput {
+    pub fint: Vec<f64>,
+    pub k: Vec<f64>,
+    pub states: Vec<PointState>,
+}
+
+/// The element's internal forces and tangent for the local unknowns `ue` at the end of the step,
+/// from the states `prev` of its points at the start.
+#[allow(clippy::needless_range_loop)]
+pub fn element(
+    cp: &CellPoints,
+    mat: &Biot,
+    ue: &[f64],
+    prev: &[PointState],
+    step: &StepData,
+) -> Result<ElementOutput, IntegrationFailure> {
+    let dim = cp.kin.dim();
+    let (nno, nv, nd) = (cp.cell.nnodes(), cp.cell.nvertices(), cp.ndof);
+    let d = IsoElastic::new(mat.e, mat.nu).hooke(cp.kin.mechanics());
+    let g = step.gravity;
+    let mut fint = vec![0.0; nd];
+    let mut k = vec![0.0; nd * nd];
+    let mut states = Vec::with_capacity(cp.points.len());
+    for (pt, prev) in cp.points.iter().zip(prev) {
+        let (eps, p, gp) = cp.kinematics_at(pt, ue);
+        let (s, der) = update(mat, &d, prev, &eps, p, &gp, &g)?;
+        let Derivatives { dsigp_dp, dm_depsv, dm_dp, dw_dgradp, dw_dp } = der;
+        let w = pt.w;
+        let bs: Vec<[[f64; 3]; 6]> = (0..nno).map(|a| cp.b(pt, a)).collect();
+        // ∂ε_v/∂u of every local displacement unknown.
+        let trace = |a: usize, i: usize| bs[a][0][i] + bs[a][1][i] + bs[a][2][i];
+        if pt.role.mech {
+            let sig: [f64; 6] = std::array::from_fn(|c| s.sig[c] + s.sigp[c]);
+            // D B of every node, and the weight of the added fluid mass's derivative.
+            let db: Vec<[[f64; 3]; 6]> = bs
+                .iter()
+                .map(|b| std::array::from_fn(|c| std::array::from_fn(|j| (0..6).map(|e| d[c][e] * b[e][j]).sum())))
+                .collect();
+            let gm = g.iter().any(|x| *x != 0.0);
+            for a in 0..nno {
+                for i in 0..dim {
+                    let r = cp.u(a, i);
+                    fint[r] += w * ((0..6).map(|c| bs[a][c][i] * sig[c]).sum::<f64>() - pt.n[a] * g[i] * s.m);
+                    // The strain components this unknown acts on (B is sparse).
+                    let nz: Vec<(usize, f64)> =
+                        (0..6).filter(|&c| bs[a][c][i] != 0.0).map(|c| (c, bs[a][c][i])).collect();
+                    let row = &mut k[r * nd..(r + 1) * nd];
+                    // K_uu: Bᵀ D B − N g ∂M/∂ε_v (m·B).
+                    for b in 0..nno {
+                        let col = cp.first[b];
+                        for j in 0..dim {
+                            let mut v: f64 = nz.iter().map(|&(c, bv)| bv * db[b][c][j]).sum();
+                            if gm {
+                                v -= pt.n[a] * g[i] * dm_depsv * trace(b, j);
+                            }
+                            row[col + j] += w * v;
+                        }
+                    }
+                    // K_up: Bᵀ (∂σ_p/∂p m) N̂ − N g ∂M/∂p N̂.
+                    let bm = trace(a, i);
+                    for jv in 0..nv {
+                        row[cp.p(jv)] += w * (bm * dsigp_dp - pt.n[a] * g[i] * dm_dp) * pt.nh[jv];
+                    }
+                }
+            }
+        }
+        if pt.role.storage {
+            let dm = s.m - prev.m;
+            for iv in 0..nv {
+                let r = cp.p(iv);
+                fint[r] -= w * pt.nh[iv] * dm;
+                for b in 0..nno {
+                    for j in 0..dim {
+                        k[r * nd + cp.u(b, j)] -= w * pt.nh[iv] * dm_depsv * trace(b, j);
+                    }
+                }
+                for jv in 0..nv {
+                    k[r * nd + cp.p(jv)] -= w * pt.nh[iv] * dm_dp * pt.nh[jv];
+                }
+            }
+        }
+        if pt.role.flux {
+            let (th, dt) = (step.theta, step.dt);
+            let wbar: [f64; 3] = std::array::from_fn(|i| th * s.w[i] + (1.0 - th) * prev.w[i]);
+            for iv in 0..nv {
+                let r = cp.p(iv);
+                let gi = pt.dnh[iv];
+                fint[r] += w * dt * (0..dim).map(|x| gi[x] * wbar[x]).sum::<f64>();
+                for jv in 0..nv {
+                    let gj = pt.dnh[jv];
+                    let v: f64 = (0..dim).map(|x| gi[x] * (dw_dgradp * gj[x] + dw_dp[x] * pt.nh[jv])).sum();
+                    k[r * nd + cp.p(jv)] += w * dt * th * v;
+                }
+            }
+        }
+        states.push(s);
+    }
+    Ok(ElementOutput { fint, k, states })
+}
+
+/// The external forces of a fluid mass flux `q(x)` entering through a skin cell (`FLUX_THM_REP
+/// FLUN_HYDR1`, kg m⁻² s⁻¹) over a step `dt`: `−Δt ∫ N̂ q` on the pressure of each vertex of the
+/// face (the linear face functions, at the skin element's points: SEG3 FPG4, TRIA6 FPG6, QUAD8 FPG9).
+pub fn flux_load(
+    kin: Kinematics,
+    t: CellType,
+    coords: &[[f64; 3]],
+    dt: f64,
+    q: &dyn Fn(&[f64; 3]) -> f64,
+) -> Result<Vec<f64>, String> {
+    let rule = crate::fem::elasticity::boundary_rule(t);
+    let pts = crate::fem::elasticity::boundary_points(kin.mechanics(), t, coords).map_err(|e| e.to_string())?;
+    let tv = vertex_type(t);
+    let nv = t.nvertices();
+    let mut out = vec![0.0; nv];
+    let mut nh = vec![0.0; nv];
+    let mut dh = vec![[0.0; 3]; nv];
+    for (xi, pt) in rule.points.iter().zip(&pts) {
+        shape_and_deriv(tv, xi, &mut nh, &mut dh);
+        let qv = q(&pt.x);
+        for (o, n) in out.iter_mut().zip(&nh) {
+            *o -= dt * pt.w * n * qv;
+        }
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::reference::node_coords;
+    use crate::hm::material::sample;
+
+    fn distorted(t: CellType) -> Vec<[f64; 3]> {
+        node_coords(t)
+            .iter()
+            .map(|p| {
+                [
+                    1.5 + p[0] + 0.1 * p[1] + 0.05 * p[0] * p[1],
+                    0.4 + p[1] - 0.07 * p[0] + 0.02 * p[2],
+                    p[2] + 0.03 * p[0] * p[1],
+                ]
+            })
+            .collect()
+    }
+
+    fn unknowns(cp: &CellPoints, seed: f64) -> Vec<f64> {
+        (0..cp.ndof).map(|k| 1e-4 * ((k as f64 + seed) * 1.7).sin()).collect()
+    }
+
+    /// The tangent is the derivative of the internal forces, for every kinematics and variant.
+    #[test]
+    fn tangent_is_the_derivative_of_the_internal_forces() {
+        let mut mat = sample();
+        mat.inv_kw = 1e-7; // a strongly nonlinear liquid
+        let cases = [
+            (Kinematics::DPlan, CellType::Quad8),
+            (Kinematics::Axis, CellType::Tria6),
+            (Kinematics::ThreeD, CellType::Hexa20),
+            (Kinematics::ThreeD, CellType::Tetra10),
+            (Kinematics::ThreeD, CellType::Penta15),
+        ];
+        for (kin, t) in cases {
+            for variant in [Variant::Full, Variant::Reduced, Variant::Lumped, Variant::Selective] {
+                let cp = CellPoints::new(kin, variant, t, &distorted(t)).unwrap();
+                let mut u0 = unknowns(&cp, 0.3);
+                for a in 0..t.nvertices() {
+                    u0[cp.p(a)] = 1e5 * (a as f64 + 1.0);
+                }
+                let prev = cp.initial_states(&mat, &u0);
+                let mut u = unknowns(&cp, 1.1);
+                for a in 0..t.nvertices() {
+                    u[cp.p(a)] = 2e5 * (a as f64 * 0.7).cos();
+                }
+                let step = StepData { dt: 10.0, theta: 0.57, gravity: [0.0, -9.81, 0.0] };
+                let out = element(&cp, &mat, &u, &prev, &step).unwrap();
+                let nd = cp.ndof;
+                for j in 0..nd {
+                    let h = if (0..t.nvertices()).any(|a| cp.p(a) == j) { 1.0 } else { 1e-9 };
+                    let mut up = u.clone();
+                    up[j] += h;
+                    let mut um = u.clone();
+                    um[j] -= h;
+                    let fp = element(&cp, &mat, &up, &prev, &step).unwrap().fint;
+                    let fm = element(&cp, &mat, &um, &prev, &step).unwrap().fint;
+                    for i in 0..nd {
+                        let fd = (fp[i] - fm[i]) / (2.0 * h);
+                        let an = out.k[i * nd + j];
+                        let scale = (0..nd).map(|c| out.k[i * nd + c].abs()).fold(0.0, f64::max);
+                        assert!(
+                            (fd - an).abs() <= 1e-6 * scale,
+                            "{kin:?} {variant:?} {}: K[{i}][{j}] = {an:e}, finite difference {fd:e} (row scale {scale:e})",
+                            t.name()
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// Undrained uniform compression of a cell: with every pressure equal and a uniform strain the
+    /// flux vanishes and the pressure rows hold only the change of mass, the same at every vertex
+    /// up to the functions' integrals; the displacement rows balance a uniform total stress.
+    #[test]
+    fn uniform_states_give_uniform_stresses() {
+        let mat = sample();
+        let t = CellType::Quad8;
+        let xs = distorted(t);
+        for variant in [Variant::Full, Variant::Lumped, Variant::Selective, Variant::Reduced] {
+            let cp = CellPoints::new(Kinematics::DPlan, variant, t, &xs).unwrap();
+            let zero = vec![0.0; cp.ndof];
+            let prev = cp.initial_states(&mat, &zero);
+            let mut u = zero.clone();
+            for (a, x) in xs.iter().enumerate() {
+                u[cp.u(a, 0)] = -1e-4 * x[0];
+                if a < 4 {
+                    u[cp.p(a)] = 1.0e5;
+                }
+            }
+            let step = StepData { dt: 1.0, theta: 1.0, gravity: [0.0; 3] };
+            let out = element(&cp, &mat, &u, &prev, &step).unwrap();
+            for s in &out.states {
+                assert!((s.sig[0] - out.states[0].sig[0]).abs() < 1e-9 * s.sig[0].abs());
+                assert_eq!(s.sigp[0], -mat.biot * 1.0e5);
+                assert!(s.w.iter().all(|w| w.abs() < 1e-12), "{:?}", s.w);
+            }
+            // Σ of the displacement rows (a rigid translation) is zero: the element is in equilibrium.
+            let sx: f64 = (0..8).map(|a| out.fint[cp.u(a, 0)]).sum();
+            assert!(sx.abs() < 1e-9 * out.fint[cp.u(0, 0)].abs().max(1.0), "{variant:?}: {sx}");
+            // Σ of the pressure rows = −∫ ΔM.
+            let sp: f64 = (0..4).map(|a| out.fint[cp.p(a)]).sum();
+            let area: f64 = cp.points.iter().filter(|p| p.role.storage).map(|p| p.w).sum();
+            assert!((sp + area * out.states.last().unwrap().m).abs() < 1e-9 * sp.abs(), "{variant:?}");
+        }
+    }
+
+    #[test]
+    fn flux_load_integrates_the_flux() {
+        // A SEG3 of length 2: the two vertices share ∫ q = 2 q; AXIS weighs it by r.
+        let xs = [[1.0, 0.0, 0.0], [1.0, 2.0, 0.0], [1.0, 1.0, 0.0]];
+        let f = flux_load(Kinematics::DPlan, CellType::Seg3, &xs, 3.0, &|_| 0.5).unwrap();
+        assert!((f[0] + 1.5).abs() < 1e-12 && (f[1] + 1.5).abs() < 1e-12, "{f:?}");
+        let xs = [[1.0, 0.0, 0.0], [3.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
+        let f = flux_load(Kinematics::Axis, CellType::Seg3, &xs, 1.0, &|_| 1.0).unwrap();
+        // ∫ r N̂ over r ∈ [1, 3]: (1·2 + 2·... ) = ∫ r (3 − r)/2 dr = 10/6 and ∫ r (r − 1)/2 dr = 14/6.
+        assert!((f[0] + 10.0 / 6.0).abs() < 1e-12 && (f[1] + 14.0 / 6.0).abs() < 1e-12, "{f:?}");
+    }
+
+    #[test]
+    fn linear_cells_are_refused() {
+        let e = CellPoints::new(Kinematics::DPlan, Variant::Full, CellType::Quad4, &distorted(CellType::Quad4))
+            .unwrap_err();
+        assert!(e.contains("quadratic"), "{e}");
+    }
+}

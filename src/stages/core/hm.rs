@@ -1,0 +1,238 @@
+//! The checked saturated-HM problem of a model and a material field: the kinematics and integration of
+//! the modelisation, the Biot material of every cell (ELAS, THM_INIT, THM_DIFFU, THM_LIQU with
+//! COMP_THM='LIQU_SATU'), the integration points of every cell, and the numbering (`DX DY [DZ]` on every
+//! node, `PRE1` on the vertices of the HM cells).
+
+use super::problem::{coords_of, mat_param};
+use crate::concepts::model::{Material, MaterialField, Modelling, Role};
+use crate::concepts::{ConceptData, ConceptRef};
+use crate::diag::{Error, Result};
+use crate::fem::dofs::DofNumbering;
+use crate::hm::{Biot, CellPoints, Kinematics, Variant};
+use crate::mesh::Mesh;
+use std::rc::Rc;
+
+/// The kinematics and the integration of an HM modelisation; None for the others.
+pub fn hm_kind(m: Modelling) -> Option<(Kinematics, Variant)> {
+    use Modelling::*;
+    Some(match m {
+        DPlanHm => (Kinematics::DPlan, Variant::Full),
+        DPlanHmd => (Kinematics::DPlan, Variant::Lumped),
+        DPlanHms => (Kinematics::DPlan, Variant::Selective),
+        DPlanHmSi => (Kinematics::DPlan, Variant::Reduced),
+        AxisHm => (Kinematics::Axis, Variant::Full),
+        AxisHmd => (Kinematics::Axis, Variant::Lumped),
+        AxisHms => (Kinematics::Axis, Variant::Selective),
+        ThreeDHm => (Kinematics::ThreeD, Variant::Full),
+        ThreeDHmd => (Kinematics::ThreeD, Variant::Lumped),
+        ThreeDHms => (Kinematics::ThreeD, Variant::Selective),
+        ThreeDHmSi => (Kinematics::ThreeD, Variant::Reduced),
+        _ => return None,
+    })
+}
+
+/// One bulk cell of an HM model.
+pub struct HmCell {
+    pub points: CellPoints,
+    pub mat: Biot,
+    /// THM_DIFFU PESA_MULT: the multiplier of the fluid's gravity, a function of INST.
+    pub pesa_mult: Option<ConceptRef>,
+    /// The global numbers of the cell's local unknowns.
+    pub dofs: Vec<usize>,
+}
+
+/// The saturated HM problem of a model.
+pub struct HmProblem {
+    pub mesh: Rc<Mesh>,
+    pub modelling: Modelling,
+    pub kin: Kinematics,
+    pub variant: Variant,
+    /// The bulk cells, and the skin cells of the model (where FLUX_THM_REP and PRES_REP act).
+    pub bulk: Vec<usize>,
+    pub skin: Vec<usize>,
+    /// Per mesh cell: its HM element, for bulk cells.
+    pub cells: Vec<Option<HmCell>>,
+    pub numbering: DofNumbering,
+    /// The index of PRE1 among the numbering's components.
+    pub pre1: usize,
+}
+
+impl HmProblem {
+    /// The bulk cells with their elements.
+    pub fn elements(&self) -> impl Iterator<Item = (usize, &HmCell)> {
+        self.bulk.iter().map(move |&c| (c, self.cells[c].as_ref().expect("bulk cells have an element")))
+    }
+}
+
+/// What a parameter of the material is called in messages, and its value.
+fn required(m: &Material, beh: &str, param: &str, cell: &str) -> Result<f64> {
+    mat_param(m, beh, param, cell)?.ok_or_else(|| {
+        Error::runtime(format!(
+            "cell {cell}: the material gives no {beh}/{param}, which a saturated HM model (KIT_HM, LIQU_SATU) needs"
+        ))
+    })
+}
+
+/// The Biot material of a cell's DEFI_MATERIAU; missing or unsupported data stop with the parameter named.
+pub fn biot_of(m: &Material, cell: &str) -> Result<(Biot, Option<ConceptRef>)> {
+    match m.options.get("COMP_THM").map(String::as_str) {
+        Some("LIQU_SATU") => {}
+        Some(other) => {
+            return Err(Error::unsupported(format!(
+                "cell {cell}: COMP_THM='{other}' is not supported yet (LIQU_SATU is)"
+            )))
+        }
+        None => {
+            return Err(Error::runtime(format!(
+            "cell {cell}: the material has no COMP_THM; a saturated HM model needs COMP_THM='LIQU_SATU' and THM_INIT, \
+                 THM_DIFFU, THM_LIQU"
+        )))
+        }
+    }
+    for beh in ["ELAS", "THM_INIT", "THM_DIFFU", "THM_LIQU"] {
+        if !m.behaviours.contains_key(beh) {
+            return Err(Error::runtime(format!(
+                "cell {cell}: the material has no {beh}, which a saturated HM model (KIT_HM, LIQU_SATU) needs"
+            )));
+        }
+    }
+    for (beh, params) in [
+        (
+            "THM_DIFFU",
+            &[
+                "BIOT_L", "BIOT_N", "BIOT_T", "PERMIN_L", "PERMIN_N", "PERMIN_T", "PERMIN_X", "PERMIN_Y", "PERMIN_Z",
+                "EMMAG", "PERM_END",
+            ][..],
+        ),
+        ("ELAS", &["E_L", "E_N"][..]),
+    ] {
+        for p in params {
+            if m.behaviours.get(beh).is_some_and(|b| b.contains_key(*p)) {
+                return Err(Error::unsupported(format!(
+                    "cell {cell}: {beh}/{p} is not supported yet (isotropic BIOT_COEF and PERM_IN are)"
+                )));
+            }
+        }
+    }
+    let pesa = |k: &str| mat_param(m, "THM_DIFFU", k, cell).map(|v| v.unwrap_or(0.0));
+    let biot = Biot {
+        e: required(m, "ELAS", "E", cell)?,
+        nu: required(m, "ELAS", "NU", cell)?,
+        biot: required(m, "THM_DIFFU", "BIOT_COEF", cell)?,
+        phi0: required(m, "THM_INIT", "PORO", cell)?,
+        rho_l: required(m, "THM_LIQU", "RHO", cell)?,
+        inv_kw: required(m, "THM_LIQU", "UN_SUR_K", cell)?,
+        visc: required(m, "THM_LIQU", "VISC", cell)?,
+        perm: perm_in(m, cell)?,
+        gravity: [pesa("PESA_X")?, pesa("PESA_Y")?, pesa("PESA_Z")?],
+        rho_h: required(m, "THM_DIFFU", "RHO", cell)?,
+    };
+    biot.check().map_err(|e| Error::runtime(format!("cell {cell}: {e}")))?;
+    let pesa_mult = match m.behaviours.get("THM_DIFFU").and_then(|b| b.get("PESA_MULT")) {
+        Some(crate::concepts::model::MatValue::Func(f)) => Some(f.clone()),
+        Some(_) => return Err(Error::runtime(format!("cell {cell}: THM_DIFFU/PESA_MULT must be a function of INST"))),
+        None => None,
+    };
+    Ok((biot, pesa_mult))
+}
+
+/// THM_DIFFU PERM_IN: a constant, or a function of PORO that does not vary.
+fn perm_in(m: &Material, cell: &str) -> Result<f64> {
+    use crate::concepts::model::MatValue;
+    match m.behaviours.get("THM_DIFFU").and_then(|b| b.get("PERM_IN")) {
+        None => Err(Error::runtime(format!(
+            "cell {cell}: the material gives no THM_DIFFU/PERM_IN, which a saturated HM model needs"
+        ))),
+        Some(MatValue::Func(f)) => {
+            let label = f.label();
+            match &*f.data() {
+                ConceptData::Function(g) if g.nom_para == "TOUTPARA" => g.eval(0.0),
+                ConceptData::Function(g) if g.nom_para == "PORO" && g.y.windows(2).all(|w| w[0] == w[1]) => Ok(g.y[0]),
+                _ => Err(Error::unsupported(format!(
+                    "cell {cell}: THM_DIFFU/PERM_IN ({label}) varies; a permeability depending on the porosity \
+                     is not supported yet (a constant is)"
+                ))),
+            }
+        }
+        Some(_) => Ok(mat_param(m, "THM_DIFFU", "PERM_IN", cell)?.unwrap_or(0.0)),
+    }
+}
+
+/// The HM problem of a model whose cells all carry one HM modelisation.
+pub fn hm_problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<HmProblem> {
+    let m = model.model()?;
+    let mesh = m.current_mesh();
+    let mut modelling = None;
+    let (mut bulk, mut skin) = (Vec::new(), Vec::new());
+    for (c, e) in m.elements.iter().enumerate() {
+        let Some(e) = e else { continue };
+        if modelling.is_some_and(|x| x != e.modelisation) {
+            return Err(Error::unsupported(format!(
+                "models mixing several modelisations are not supported yet ({} and {})",
+                modelling.unwrap(),
+                e.modelisation
+            )));
+        }
+        modelling = Some(e.modelisation);
+        match e.role {
+            Role::Bulk => bulk.push(c),
+            Role::Skin => skin.push(c),
+        }
+    }
+    let modelling = modelling.ok_or_else(|| Error::runtime(format!("model {} has no element", model.label())))?;
+    let (kin, variant) = hm_kind(modelling)
+        .ok_or_else(|| Error::runtime(format!("MODELISATION='{modelling}' is not a saturated HM modelisation")))?;
+    let data = chmat.data();
+    let ConceptData::MaterialField(MaterialField { cells: mats, .. }) = &*data else {
+        return Err(Error::runtime(format!("{} holds no material field", chmat.label())));
+    };
+    let dim = kin.dim();
+    let pre1 = dim;
+    // DX DY [DZ] on every node of the model's cells, PRE1 on the vertices.
+    let mut mask = vec![0u8; mesh.nnodes()];
+    for &c in bulk.iter().chain(&skin) {
+        let t = mesh.cell_types[c];
+        for (k, &n) in mesh.cells[c].iter().enumerate() {
+            mask[n] |= (1 << dim) - 1;
+            if k < t.nvertices() {
+                mask[n] |= 1 << pre1;
+            }
+        }
+    }
+    let mut names = crate::fem::dofs::COMPONENTS[..dim].to_vec();
+    names.push("PRE1");
+    let numbering = DofNumbering::with_components(names, mask);
+    let mut cells: Vec<Option<HmCell>> = (0..mesh.cells.len()).map(|_| None).collect();
+    let mut cache: Vec<(*const crate::concepts::Concept, (Biot, Option<ConceptRef>))> = Vec::new();
+    for &c in &bulk {
+        let name = &mesh.cell_names[c];
+        let Some(mc) = &mats[c] else {
+            return Err(Error::runtime(format!("cell {name} of the model has no material (AFFE_MATERIAU)")));
+        };
+        let key = Rc::as_ptr(mc);
+        let (mat, pesa_mult) = match cache.iter().find(|(k, _)| *k == key) {
+            Some((_, v)) => v.clone(),
+            None => {
+                let md = mc.data();
+                let ConceptData::Material(mat) = &*md else { unreachable!("AFFE_MATERIAU holds materials") };
+                let v = biot_of(mat, name)?;
+                cache.push((key, v.clone()));
+                v
+            }
+        };
+        let points = CellPoints::new(kin, variant, mesh.cell_types[c], &coords_of(&mesh, c))
+            .map_err(|e| Error::runtime(format!("cell {name}: {e}")))?;
+        let dofs = numbering.cell_dofs(&mesh.cells[c]).expect("the cell's nodes are numbered");
+        cells[c] = Some(HmCell { points, mat, pesa_mult, dofs });
+    }
+    Ok(HmProblem { mesh, modelling, kin, variant, bulk, skin, cells, numbering, pre1 })
+}
+
+/// The number of integration points of a cell's element (the points of its ELGA fields): the HM
+/// variant's family, or the RIGI family of a mechanical element.
+pub fn elga_points(m: Modelling, t: crate::mesh::CellType) -> std::result::Result<usize, String> {
+    match hm_kind(m) {
+        Some((_, variant)) => crate::hm::element::point_count(variant, t),
+        None => Ok(crate::fem::elasticity::rigi_rule(t).len()),
+    }
+}

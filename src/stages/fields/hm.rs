@@ -1,0 +1,294 @@
+//! CALC_CHAMP on saturated HM results: the fields Code_Aster derives from SIEF_ELGA (σ', σ_p, M, w),
+//! VARI_ELGA and the displacements, at the integration points of the HM elements and extrapolated to
+//! the nodes as `inmat4`/`inmat6` do (a least-squares fit of the vertex element's functions through the
+//! point values, middle nodes the mean of their edge's ends; at the vertex points of `*_HMD` elements
+//! the point value itself). `*_HMS` elements extrapolate their mechanical components from the Gauss
+//! points and their hydraulic ones from the vertex points.
+
+use crate::catalog::args::Args;
+use crate::concepts::result::{Field, Step};
+use crate::concepts::ConceptRef;
+use crate::diag::Result;
+use crate::fem::elasticity::gauss_to_node_matrix;
+use crate::fem::quadrature::{QuadratureRule, RefDomain};
+use crate::hm::element::{CellPoints, Variant};
+use crate::mesh::Mesh;
+use crate::stages::core::hm::{hm_problem, HmProblem};
+
+/// The options CALC_CHAMP computes on HM results.
+pub const OPTIONS: &[&str] = &[
+    "SIGM_ELGA",
+    "SIGM_ELNO",
+    "SIGM_NOEU",
+    "SIEF_ELNO",
+    "SIEF_NOEU",
+    "SIEQ_ELGA",
+    "SIEQ_ELNO",
+    "SIEQ_NOEU",
+    "EPSI_ELGA",
+    "EPSI_ELNO",
+    "EPSI_NOEU",
+    "EPEQ_ELGA",
+    "EPEQ_ELNO",
+    "EPEQ_NOEU",
+    "VARI_ELNO",
+    "VARI_NOEU",
+];
+
+const EPEQ_COMPONENTS: [&str; 5] = ["INVA_2", "PRIN_1", "PRIN_2", "PRIN_3", "INVA_2SG"];
+
+/// The extrapolation matrix (`m[node][point]`) of the points `pts` of a cell.
+fn gano(cp: &CellPoints, pts: &[usize]) -> Vec<Vec<f64>> {
+    let rule = QuadratureRule {
+        name: cp.family.clone(),
+        domain: RefDomain::of(cp.cell),
+        points: pts.iter().map(|&k| cp.points[k].xi).collect(),
+        weights: vec![1.0; pts.len()],
+        degree: 0,
+    };
+    gauss_to_node_matrix(cp.cell, &rule)
+}
+
+/// Extrapolate point values (`ncmp` per point) to the nodes of a cell; with `split`, components below
+/// it come from the Gauss points and the others from the vertex points (S elements).
+fn to_nodes(cp: &CellPoints, v: &[f64], ncmp: usize, split: Option<usize>) -> Vec<f64> {
+    let npts = cp.points.len();
+    let nno = cp.cell.nnodes();
+    let mut out = vec![0.0; nno * ncmp];
+    let groups: Vec<(Vec<usize>, std::ops::Range<usize>)> = match (cp.variant, split) {
+        (Variant::Selective, Some(s)) => {
+            let ng = npts - cp.cell.nvertices();
+            vec![((0..ng).collect(), 0..s), ((ng..npts).collect(), s..ncmp)]
+        }
+        (Variant::Selective, None) => {
+            let ng = npts - cp.cell.nvertices();
+            vec![((0..ng).collect(), 0..ncmp)]
+        }
+        _ => vec![((0..npts).collect(), 0..ncmp)],
+    };
+    for (pts, comps) in groups {
+        let m = gano(cp, &pts);
+        for (node, row) in m.iter().enumerate() {
+            for (w, &k) in row.iter().zip(&pts) {
+                for c in comps.clone() {
+                    out[node * ncmp + c] += w * v[k * ncmp + c];
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Average ELNO values at the nodes over the cells that carry them.
+fn average(mesh: &Mesh, cells: &[Option<Vec<f64>>], ncmp: usize) -> Vec<f64> {
+    let mut sum = vec![0.0; mesh.nnodes() * ncmp];
+    let mut count = vec![0usize; mesh.nnodes()];
+    for (c, v) in cells.iter().enumerate() {
+        let Some(v) = v else { continue };
+        for (i, &n) in mesh.cells[c].iter().enumerate() {
+            count[n] += 1;
+            for k in 0..ncmp {
+                sum[n * ncmp + k] += v[i * ncmp + k];
+            }
+        }
+    }
+    for n in 0..count.len() {
+        for k in 0..ncmp {
+            sum[n * ncmp + k] = if count[n] > 0 { sum[n * ncmp + k] / count[n] as f64 } else { f64::NAN };
+        }
+    }
+    sum
+}
+
+/// Principal values (ascending) of a symmetric tensor given as [xx, yy, zz, xy, xz, yz].
+fn principal(s: &[f64; 6]) -> [f64; 3] {
+    let m = nalgebra::Matrix3::new(s[0], s[3], s[4], s[3], s[1], s[5], s[4], s[5], s[2]);
+    let mut e: [f64; 3] = m.symmetric_eigenvalues().into();
+    e.sort_by(|x, y| x.total_cmp(y));
+    e
+}
+
+/// EPEQ of a tensorial strain: the second invariant √(2/3 e:e) of its deviator, the principal strains,
+/// the invariant signed by the trace.
+fn epeq(e: &[f64; 6]) -> [f64; 5] {
+    let tr = e[0] + e[1] + e[2];
+    let m = tr / 3.0;
+    let dev2 =
+        (e[0] - m).powi(2) + (e[1] - m).powi(2) + (e[2] - m).powi(2) + 2.0 * (e[3] * e[3] + e[4] * e[4] + e[5] * e[5]);
+    let inva = (2.0 / 3.0 * dev2).sqrt();
+    let pr = principal(e);
+    [inva, pr[0], pr[1], pr[2], if tr < 0.0 { -inva } else { inva }]
+}
+
+/// Compute `wanted` on every step of an HM result (restricted to the cells `only` accepts).
+pub fn calc_champ_hm(
+    a: &Args,
+    wanted: &[String],
+    steps: &mut [Step],
+    model: &ConceptRef,
+    chmat: &ConceptRef,
+    only: &dyn Fn(&usize) -> bool,
+    orders: &[i64],
+) -> Result<()> {
+    if let Some(o) = wanted.iter().find(|o| !OPTIONS.contains(&o.as_str())) {
+        return Err(a.err("RESULTAT", format!("option {o} is not supported yet on a saturated HM result")));
+    }
+    let p = hm_problem(model, chmat).map_err(|e| e.at(a.span))?;
+    let ns = p.kin.mechanics().nsig();
+    let sigma_names: Vec<String> = p.kin.mechanics().sigma_names().iter().map(|s| s.to_string()).collect();
+    let eps_names: Vec<String> = p.kin.mechanics().epsilon_names().iter().map(|s| s.to_string()).collect();
+    for step in steps.iter_mut() {
+        if !orders.is_empty() && !orders.contains(&step.nume_ordre) {
+            continue;
+        }
+        let fields = step_fields(&p, step, only, ns)
+            .map_err(|m| a.err("RESULTAT", format!("order {}: {m}", step.nume_ordre)))?;
+        for o in wanted {
+            let f = match o.as_str() {
+                "SIGM_ELGA" => Field::Elga { components: sigma_names.clone(), cells: fields.sigm_elga.clone() },
+                "SIGM_ELNO" => Field::Elno { components: sigma_names.clone(), cells: fields.sigm_elno.clone() },
+                "SIGM_NOEU" => {
+                    Field::Node { components: sigma_names.clone(), values: average(&p.mesh, &fields.sigm_elno, ns) }
+                }
+                "SIEF_ELNO" => Field::Elno { components: fields.sief_names.clone(), cells: fields.sief_elno.clone() },
+                "SIEF_NOEU" => Field::Node {
+                    components: fields.sief_names.clone(),
+                    values: average(&p.mesh, &fields.sief_elno, fields.sief_names.len()),
+                },
+                "EPSI_ELGA" => Field::Elga { components: eps_names.clone(), cells: fields.epsi_elga.clone() },
+                "EPSI_ELNO" => Field::Elno { components: eps_names.clone(), cells: fields.epsi_elno.clone() },
+                "EPSI_NOEU" => {
+                    Field::Node { components: eps_names.clone(), values: average(&p.mesh, &fields.epsi_elno, ns) }
+                }
+                "VARI_ELNO" => Field::Elno { components: fields.vari_names.clone(), cells: fields.vari_elno.clone() },
+                "VARI_NOEU" => Field::Node {
+                    components: fields.vari_names.clone(),
+                    values: average(&p.mesh, &fields.vari_elno, fields.vari_names.len()),
+                },
+                "SIEQ_ELGA" | "SIEQ_ELNO" | "SIEQ_NOEU" => {
+                    let src = if o == "SIEQ_ELGA" { &fields.sigm_elga } else { &fields.sigm_elno };
+                    let cells: Vec<Option<Vec<f64>>> = src
+                        .iter()
+                        .map(|c| {
+                            c.as_ref().map(|v| v.chunks(ns).flat_map(super::calc_champ::equivalent_stresses).collect())
+                        })
+                        .collect();
+                    let names: Vec<String> = super::calc_champ::SIEQ_COMPONENTS.iter().map(|s| s.to_string()).collect();
+                    let n = names.len();
+                    match o.as_str() {
+                        "SIEQ_ELGA" => Field::Elga { components: names, cells },
+                        "SIEQ_ELNO" => Field::Elno { components: names, cells },
+                        _ => Field::Node { components: names, values: average(&p.mesh, &cells, n) },
+                    }
+                }
+                _ => {
+                    // EPEQ_*.
+                    let src = if o == "EPEQ_ELGA" { &fields.epsi_elga } else { &fields.epsi_elno };
+                    let cells: Vec<Option<Vec<f64>>> = src
+                        .iter()
+                        .map(|c| {
+                            c.as_ref().map(|v| {
+                                v.chunks(ns)
+                                    .flat_map(|e| {
+                                        let mut t = [0.0; 6];
+                                        t[..ns].copy_from_slice(e);
+                                        epeq(&t)
+                                    })
+                                    .collect()
+                            })
+                        })
+                        .collect();
+                    let names: Vec<String> = EPEQ_COMPONENTS.iter().map(|s| s.to_string()).collect();
+                    match o.as_str() {
+                        "EPEQ_ELGA" => Field::Elga { components: names, cells },
+                        "EPEQ_ELNO" => Field::Elno { components: names, cells },
+                        _ => Field::Node { components: names, values: average(&p.mesh, &cells, EPEQ_COMPONENTS.len()) },
+                    }
+                }
+            };
+            step.fields.insert(o.clone(), f);
+        }
+    }
+    Ok(())
+}
+
+/// The point and node fields of one step.
+struct StepFields {
+    sief_names: Vec<String>,
+    vari_names: Vec<String>,
+    sigm_elga: Vec<Option<Vec<f64>>>,
+    sigm_elno: Vec<Option<Vec<f64>>>,
+    sief_elno: Vec<Option<Vec<f64>>>,
+    epsi_elga: Vec<Option<Vec<f64>>>,
+    epsi_elno: Vec<Option<Vec<f64>>>,
+    vari_elno: Vec<Option<Vec<f64>>>,
+}
+
+fn step_fields(
+    p: &HmProblem,
+    step: &Step,
+    only: &dyn Fn(&usize) -> bool,
+    ns: usize,
+) -> std::result::Result<StepFields, String> {
+    let nc = p.mesh.cells.len();
+    let (
+        Some(Field::Elga { components: sief_names, cells: sief }),
+        Some(Field::Elga { components: vari_names, cells: vari }),
+    ) = (step.fields.get("SIEF_ELGA"), step.fields.get("VARI_ELGA"))
+    else {
+        return Err("the result holds no SIEF_ELGA and VARI_ELGA of an HM model".into());
+    };
+    let Some(Field::Node { components, values: depl }) = step.fields.get("DEPL") else {
+        return Err("the result holds no DEPL".into());
+    };
+    let nsief = sief_names.len();
+    let nvari = vari_names.len();
+    let mut out = StepFields {
+        sief_names: sief_names.clone(),
+        vari_names: vari_names.clone(),
+        sigm_elga: vec![None; nc],
+        sigm_elno: vec![None; nc],
+        sief_elno: vec![None; nc],
+        epsi_elga: vec![None; nc],
+        epsi_elno: vec![None; nc],
+        vari_elno: vec![None; nc],
+    };
+    let ncd = components.len();
+    for (c, cell) in p.elements().filter(|(c, _)| only(c)) {
+        let cp = &cell.points;
+        let npts = cp.points.len();
+        let (Some(s), Some(v)) = (&sief[c], &vari[c]) else { continue };
+        if s.len() != npts * nsief || v.len() != npts * nvari {
+            return Err(format!("cell {}: the stored fields do not match the model's points", p.mesh.cell_names[c]));
+        }
+        let sg: Vec<f64> = s.chunks(nsief).flat_map(|x| x[..ns].to_vec()).collect();
+        // σ' (and σ_p) are mechanical; M and w hydraulic.
+        let split = Some(12);
+        out.sigm_elno[c] = Some(to_nodes(cp, &sg, ns, Some(ns)));
+        out.sief_elno[c] = Some(to_nodes(cp, s, nsief, split));
+        out.vari_elno[c] = Some(to_nodes(cp, v, nvari, Some(1)));
+        out.sigm_elga[c] = Some(sg);
+        // Strains of the displacements at the points (tensorial shear).
+        let ue: Vec<f64> = cell
+            .dofs
+            .iter()
+            .map(|&d| {
+                let (n, k) = p.numbering.node_comp(d);
+                depl[n * ncd + components.iter().position(|x| x == p.numbering.components[k]).unwrap_or(k)]
+            })
+            .collect();
+        let mut e = Vec::with_capacity(npts * ns);
+        for pt in &cp.points {
+            let eps = cp.strain(pt, &ue);
+            for (k, v) in eps.iter().enumerate().take(ns) {
+                e.push(if k >= 3 { 0.5 * v } else { *v });
+            }
+        }
+        out.epsi_elno[c] = Some(to_nodes(cp, &e, ns, Some(ns)));
+        out.epsi_elga[c] = Some(e);
+    }
+    if out.sigm_elga.iter().all(Option::is_none) {
+        return Err("no cell of the selection carries an HM element".into());
+    }
+    Ok(out)
+}

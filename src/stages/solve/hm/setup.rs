@@ -1,0 +1,380 @@
+//! The keywords of an HM STAT_NON_LINE, the loads of EXCIT at an instant, and the run report.
+
+use super::step::StepLog;
+use crate::catalog::args::Args;
+use crate::concepts::model::{Load, LoadItem, Role};
+use crate::concepts::ConceptData;
+use crate::diag::{Error, Result};
+use crate::fem::dofs::Constraints;
+use crate::fem::elasticity;
+use crate::hm::element::{flux_load, Variant};
+use crate::stages::core::assembly::loads;
+use crate::stages::core::eval::{eval_at, load_value};
+use crate::stages::core::hm::HmProblem;
+use crate::stages::core::problem::coords_of;
+use std::rc::Rc;
+
+/// COMPORTEMENT: KIT_HM with RELATION_KIT=('ELAS', 'LIQU_SATU', 'HYDR_UTIL') on the whole model, small
+/// strains; the integration controls have no effect (the laws update in closed form).
+pub fn behaviour(a: &Args) -> Result<()> {
+    let occs = a.facts("COMPORTEMENT");
+    if occs.is_empty() {
+        return Err(a.err(
+            "COMPORTEMENT",
+            "a saturated HM model needs COMPORTEMENT=_F(RELATION='KIT_HM', RELATION_KIT=('ELAS', 'LIQU_SATU', \
+             'HYDR_UTIL'))",
+        ));
+    }
+    for occ in occs {
+        crate::stages::core::newton::closed_form_behaviour(occ)?;
+        let rel = occ.text("RELATION").unwrap_or("ELAS");
+        if rel != "KIT_HM" {
+            return Err(occ.err(
+                "RELATION",
+                format!(
+                    "RELATION='{rel}' on a saturated HM model: KIT_HM is needed (the others are not supported yet)"
+                ),
+            ));
+        }
+        let kit = occ.texts("RELATION_KIT");
+        let want = ["ELAS", "LIQU_SATU", "HYDR_UTIL"];
+        if kit.len() != 3 || kit.iter().zip(want).any(|(k, w)| k != w) {
+            return Err(occ.err(
+                "RELATION_KIT",
+                format!("RELATION_KIT={kit:?} is not supported yet (('ELAS', 'LIQU_SATU', 'HYDR_UTIL') is)"),
+            ));
+        }
+        if occ.text("DEFORMATION").is_some_and(|d| d != "PETIT") {
+            return Err(occ.err("DEFORMATION", "only DEFORMATION='PETIT' is supported yet"));
+        }
+    }
+    Ok(())
+}
+
+/// SCHEMA_THM PARM_THETA (1 by default); PARM_ALPHA plays no part in these laws.
+pub fn theta(a: &Args) -> Result<f64> {
+    let Some(s) = a.fact("SCHEMA_THM") else { return Ok(1.0) };
+    let theta = s.real("PARM_THETA").unwrap_or(1.0);
+    // PARM_ALPHA weighs the thermal terms of other laws; saturated HM without temperature ignores it.
+    let _ = s.real("PARM_ALPHA");
+    Ok(theta)
+}
+
+/// The instants to store beyond the initial state: ARCHIVAGE INST / LIST_INST (within PRECISION), every
+/// PAS_ARCH-th instant, and always the last one (Code_Aster archives the end of the computation).
+pub fn archive(a: &Args, times: &[f64]) -> Result<Vec<f64>> {
+    let Some(arch) = a.fact("ARCHIVAGE") else { return Ok(times[1..].to_vec()) };
+    if arch.given("CHAM_EXCLU") {
+        return Err(arch.err("CHAM_EXCLU", "not supported yet (every field is stored)"));
+    }
+    let wanted: Option<(Vec<f64>, &str)> = if arch.has("INST") {
+        Some((arch.reals("INST"), "INST"))
+    } else if let Some(l) = arch.concept("LIST_INST") {
+        Some((l.reals().map_err(|e| arch.err("LIST_INST", e.msg))?, "LIST_INST"))
+    } else {
+        None
+    };
+    let mut out = Vec::new();
+    match wanted {
+        Some((list, kw)) => {
+            let crit = arch.text("CRITERE").unwrap_or("RELATIF");
+            let prec = arch.real("PRECISION").unwrap_or(1e-6);
+            for &t in &times[1..] {
+                let tol = if crit == "ABSOLU" { prec } else { prec * t.abs() };
+                if list.iter().any(|&x| (x - t).abs() <= tol) {
+                    out.push(t);
+                }
+            }
+            // Instants asked for that the computation never reaches are left out, as Code_Aster does;
+            // a list that selects none would store nothing.
+            if out.is_empty() {
+                return Err(arch.err(kw, "no instant of the computation is selected"));
+            }
+        }
+        None => {
+            let pas = arch.int("PAS_ARCH").unwrap_or(1).max(1) as usize;
+            out.extend(times[1..].iter().enumerate().filter(|(k, _)| (k + 1) % pas == 0).map(|(_, t)| *t));
+        }
+    }
+    let last = *times.last().unwrap();
+    if out.last() != Some(&last) {
+        out.push(last);
+    }
+    Ok(out)
+}
+
+/// The loads of EXCIT over a step ending at `t` of length `dt`: the kinematic conditions (values at
+/// `t`) and the external forces: nodal, surface and pressure forces on the displacements, the weight of
+/// the mixture (PESANTEUR, with THM_DIFFU RHO), and FLUX_THM_REP on the pressures (`−Δt ∫ N̂ q`).
+pub fn loads_at(
+    a: &Args,
+    p: &HmProblem,
+    model: &crate::concepts::ConceptRef,
+    t: f64,
+    dt: f64,
+) -> Result<(Constraints, Vec<f64>)> {
+    let mesh = &p.mesh;
+    let dim = p.kin.dim();
+    let md = p.kin.mechanics();
+    let num = &p.numbering;
+    let mut cons = Constraints::new();
+    let mut f = vec![0.0; num.ndofs()];
+    let model_ref = model.model()?;
+    let on_skin = |c: usize| model_ref.elements[c].as_ref().map(|e| e.role) == Some(Role::Skin);
+    let udofs = |c: usize| -> Option<Vec<usize>> {
+        mesh.cells[c].iter().flat_map(|&n| (0..dim).map(move |i| num.dof(n, i))).collect()
+    };
+    for (lc, mult) in loads(a, t)? {
+        let data = lc.data();
+        let ConceptData::Load(Load { items, model: lmodel, .. }) = &*data else {
+            return Err(a.err("EXCIT", format!("{} is not a mechanical load", lc.label())));
+        };
+        if !Rc::ptr_eq(lmodel, model) {
+            return Err(a.err("EXCIT", format!("load {} is defined on another model ({})", lc.label(), lmodel.label())));
+        }
+        let name = lc.label();
+        let skin_cell = |c: usize| -> Result<Vec<usize>> {
+            match udofs(c) {
+                Some(d) if on_skin(c) => Ok(d),
+                _ => Err(a.err(
+                    "EXCIT",
+                    format!("load {name}: cell {} is not a boundary cell of the model", mesh.cell_names[c]),
+                )),
+            }
+        };
+        let node_name = |n: usize| mesh.node_names[n].clone();
+        for item in items {
+            match item {
+                LoadItem::Dof { node, component, value } => {
+                    let k = num.component(component).ok_or_else(|| {
+                        a.err("EXCIT", format!("load {name}: {component} is not an unknown of a {} model", p.modelling))
+                    })?;
+                    match num.dof(*node, k) {
+                        Some(d) => cons.impose(d, mult * load_value(value, &mesh.coords[*node], t)?),
+                        // A middle node carries no pressure: Code_Aster passes over it (afddli).
+                        None if k == p.pre1 && num.has_node(*node) => {}
+                        None => {
+                            return Err(a.err(
+                                "EXCIT",
+                                format!("load {name}: node {} carries no element of the model", node_name(*node)),
+                            ))
+                        }
+                    }
+                }
+                LoadItem::Relation { terms, value } => {
+                    let mut tt = Vec::new();
+                    for (node, comp, coef) in terms {
+                        let k = num.component(comp).ok_or_else(|| {
+                            a.err("EXCIT", format!("load {name}: {comp} is not an unknown of a {} model", p.modelling))
+                        })?;
+                        let d = num.dof(*node, k).ok_or_else(|| {
+                            a.err("EXCIT", format!("load {name}: node {} carries no {comp}", node_name(*node)))
+                        })?;
+                        tt.push((d, *coef));
+                    }
+                    cons.relation(tt, mult * load_value(value, &[0.0; 3], t)?);
+                }
+                LoadItem::NodalForce { node, component, value } => {
+                    let k = match component.as_str() {
+                        "FX" => 0,
+                        "FY" => 1,
+                        "FZ" if dim == 3 => 2,
+                        c => {
+                            return Err(a.err(
+                                "EXCIT",
+                                format!("load {name}: FORCE_NODALE {c} is not supported on a {} model", p.modelling),
+                            ))
+                        }
+                    };
+                    let d = num.dof(*node, k).ok_or_else(|| {
+                        a.err(
+                            "EXCIT",
+                            format!("load {name}: node {} carries no element of the model", node_name(*node)),
+                        )
+                    })?;
+                    f[d] += mult * load_value(value, &mesh.coords[*node], t)?;
+                }
+                LoadItem::SurfaceForce { cells, components } => {
+                    if dim < 3 && components.iter().any(|(n, _)| n == "FZ") {
+                        return Err(a.err("EXCIT", format!("load {name}: FZ in a {} model", p.modelling)));
+                    }
+                    for &c in cells {
+                        let dofs = skin_cell(c)?;
+                        let err = std::cell::RefCell::new(None);
+                        let fx = |x: &[f64; 3], _n: &[f64; 3]| -> [f64; 3] {
+                            let mut v = [0.0; 3];
+                            for (cn, val) in components {
+                                let k = ["FX", "FY", "FZ"].iter().position(|s| s == cn).unwrap_or(2);
+                                match load_value(val, x, t) {
+                                    Ok(r) => v[k] = mult * r,
+                                    Err(e) => *err.borrow_mut() = Some(e),
+                                }
+                            }
+                            v
+                        };
+                        let fe = elasticity::boundary_force(md, mesh.cell_types[c], &coords_of(mesh, c), &fx)
+                            .map_err(|e| Error::runtime(e.to_string()).at(a.span))?;
+                        if let Some(e) = err.into_inner() {
+                            return Err(e.at(a.span));
+                        }
+                        for (d, v) in dofs.iter().zip(fe) {
+                            f[*d] += v;
+                        }
+                    }
+                }
+                LoadItem::Pressure { cells, value } => {
+                    for &c in cells {
+                        let dofs = skin_cell(c)?;
+                        let xs = coords_of(mesh, c);
+                        let pres: Vec<f64> =
+                            xs.iter().map(|x| load_value(value, x, t).map(|v| v * mult)).collect::<Result<_>>()?;
+                        let fe = elasticity::pressure_force(md, mesh.cell_types[c], &xs, &pres, None)
+                            .map_err(|e| Error::runtime(e.to_string()).at(a.span))?;
+                        for (d, v) in dofs.iter().zip(fe) {
+                            f[*d] += v;
+                        }
+                    }
+                }
+                LoadItem::FluxThm { cells, value } => {
+                    for &c in cells {
+                        skin_cell(c)?;
+                        let t_c = mesh.cell_types[c];
+                        let err = std::cell::RefCell::new(None);
+                        let q = |x: &[f64; 3]| match load_value(value, x, t) {
+                            Ok(v) => mult * v,
+                            Err(e) => {
+                                *err.borrow_mut() = Some(e);
+                                0.0
+                            }
+                        };
+                        let fe = flux_load(p.kin, t_c, &coords_of(mesh, c), dt, &q)
+                            .map_err(|e| a.err("EXCIT", format!("load {name}: cell {}: {e}", mesh.cell_names[c])))?;
+                        if let Some(e) = err.into_inner() {
+                            return Err(e.at(a.span));
+                        }
+                        for (k, v) in fe.iter().enumerate() {
+                            let n = mesh.cells[c][k];
+                            let d = num.dof(n, p.pre1).ok_or_else(|| {
+                                a.err("EXCIT", format!("load {name}: node {} carries no PRE1", node_name(n)))
+                            })?;
+                            f[d] += v;
+                        }
+                    }
+                }
+                LoadItem::Gravity { g, direction, cells } => {
+                    let on: Vec<usize> = match cells {
+                        Some(c) => c.iter().copied().filter(|c| p.cells[*c].is_some()).collect(),
+                        None => p.bulk.clone(),
+                    };
+                    for c in on {
+                        let cell = p.cells[c].as_ref().unwrap();
+                        let rho = cell.mat.rho_h;
+                        let acc = [0, 1, 2].map(|i| rho * g * direction[i] * mult);
+                        // The weight of the mixture, at the points where the element integrates mechanics.
+                        for pt in cell.points.points.iter().filter(|pt| pt.role.mech) {
+                            for (a_n, &n_a) in pt.n.iter().enumerate() {
+                                for (i, acc_i) in acc.iter().enumerate().take(dim) {
+                                    f[cell.dofs[cell.points.u(a_n, i)]] += pt.w * n_a * acc_i;
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    Ok((cons, f))
+}
+
+/// The fluid's gravity of a cell at `t`: THM_DIFFU PESA_X/Y/Z × PESA_MULT(t).
+pub fn gravity(cell: &crate::stages::core::hm::HmCell, t: f64) -> Result<[f64; 3]> {
+    let m = match &cell.pesa_mult {
+        Some(f) => eval_at(f, &[0.0; 3], t)?,
+        None => 1.0,
+    };
+    Ok(cell.mat.gravity.map(|g| g * m))
+}
+
+/// What was simulated and how: the unknowns, what was eliminated and why, the couplings that vanish,
+/// then the steps.
+pub fn report(
+    p: &HmProblem,
+    a: &Args,
+    times: &[f64],
+    theta: f64,
+    log: &StepLog,
+    stored: usize,
+    seconds: f64,
+) -> Result<String> {
+    let num = &p.numbering;
+    let npre = (0..num.ndofs()).filter(|&d| num.node_comp(d).1 == p.pre1).count();
+    let nu = num.ndofs() - npre;
+    let variant = match p.variant {
+        Variant::Full => "all terms at the Gauss points",
+        Variant::Reduced => "all terms at the points of the reduced family",
+        Variant::Lumped => "all terms at the vertices (lumped storage)",
+        Variant::Selective => "mechanics and flow at the Gauss points, storage at the vertices",
+    };
+    let mut s = format!(
+        "  STAT_NON_LINE ({}, KIT_HM ELAS/LIQU_SATU/HYDR_UTIL, θ = {theta}): {} cells, {variant}\n",
+        p.modelling,
+        p.bulk.len()
+    );
+    s.push_str(&format!(
+        "    unknowns  : {} ({nu} displacements, {npre} pressures PRE1 on vertices), {} solved\n",
+        num.ndofs(),
+        log.solved
+    ));
+    let (elim_u, elim_p) = (log.eliminated_u, log.eliminated_p);
+    if elim_p == npre && npre > 0 {
+        s.push_str(&format!(
+            "    hydraulics: PRE1 prescribed on all {npre} vertices (DDL_IMPO): the flow is not computed, the \
+             pressures act through the Biot coupling only\n"
+        ));
+    } else if elim_p > 0 {
+        s.push_str(&format!(
+            "    hydraulics: PRE1 prescribed on {elim_p} of {npre} vertices (eliminated); the flow is solved on the \
+             other {}\n",
+            npre - elim_p
+        ));
+    } else {
+        s.push_str(&format!("    hydraulics: the flow is solved on all {npre} vertices\n"));
+    }
+    s.push_str(&format!("    mechanics : {elim_u} of {nu} displacements prescribed (eliminated)\n"));
+    // The couplings the material data switch off.
+    let mats: Vec<_> = p.elements().map(|(_, c)| c.mat).collect();
+    let mut vanish = Vec::new();
+    if mats.iter().all(|m| m.perm == 0.0) {
+        vanish.push("no permeability (PERM_IN = 0): no flow, undrained everywhere");
+    }
+    if mats.iter().all(|m| m.biot == 0.0) {
+        vanish.push("BIOT_COEF = 0: the pressure does not load the skeleton");
+    }
+    if mats.iter().all(|m| m.gravity == [0.0; 3]) {
+        vanish.push("PESA_X/Y/Z = 0: no weight of the fluid");
+    }
+    if mats.iter().all(|m| m.inv_kw == 0.0) {
+        vanish.push("UN_SUR_K = 0: incompressible liquid");
+    }
+    if !vanish.is_empty() {
+        s.push_str(&format!("    vanishing : {}\n", vanish.join("; ")));
+    }
+    if let Some(n) = crate::stages::core::newton::newton_note(a) {
+        s.push_str(&n);
+        s.push('\n');
+    }
+    s.push_str(&format!(
+        "    steps     : {} instants from {} to {}, {} computed ({} cut), {} stored, {} Newton iterations in all, \
+         {:.3} s\n",
+        times.len() - 1,
+        times[0],
+        times[times.len() - 1],
+        log.steps,
+        log.cuts,
+        stored,
+        log.iterations,
+        seconds
+    ));
+    s.push_str(&log.table);
+    Ok(s)
+}

@@ -1,0 +1,2 @@
+//! `aster study` end to end: a small grid of our scenes, the CSV, the markdown table and the plots.
+mod grid;
