@@ -8,3 +8,4 @@ mod mortar;
 mod post_erreur;
 mod topose;
 mod topose_linear;
+mod vertex_rows;
