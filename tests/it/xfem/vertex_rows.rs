@@ -51,3 +51,12 @@ fn quad8_at_1e_4_from_a_vertex_row() {
 fn hexa20_at_1e_3_and_1e_4_from_a_vertex_row() {
     run_scene("vertex_row_3d", 48, 1.0);
 }
+
+/// HEXA20 cells of size 2, FISS1 at 1e-8·h and 1e-10·h from a row of
+/// vertices and mid-side nodes, and exactly through it: TOPOSE's degenerate
+/// 3D cuttings (sub-tetrahedra cut through their vertices): 3 distances × 2
+/// results × 3 components × max and min × 2 lines.
+#[test]
+fn hexa20_through_and_next_to_a_vertex_row() {
+    run_scene("vertex_row_3d_degenerate", 72, 1.0);
+}
