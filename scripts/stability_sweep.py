@@ -11,8 +11,9 @@ at 10^-k * h from a row of nodes, k = 1..14, and exactly through it (k = inf), f
 Each case is the property test's scene (tests/it/xfem/property.rs): equal compression, glued cohesive
 interface (CZM_LIN_MIX, mortar, ORDRE_INT=4), checks at every node of the mesh and of the visual mesh.
 Recorded: the diagnostic, the worst node error relative to U and the condition estimate of the solve.
-Writes docs/stability/sweep.csv, the markdown tables docs/stability/table.md and the plots
-docs/stability/error.svg and docs/stability/condition.svg.
+Writes the plots docs/stability/error.svg and docs/stability/condition.svg, and the run's data
+target/stability/sweep.csv and its markdown tables target/stability/table.md (docs/stability.md quotes
+them).
 
     cargo build --release && python3 scripts/stability_sweep.py
 """
@@ -26,6 +27,7 @@ import tempfile
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ASTER = os.path.join(ROOT, "target/release/aster")
 OUT = os.path.join(ROOT, "docs/stability")
+DATA = os.path.join(ROOT, "target/stability")
 U = 1.0e-4
 
 SCENE = """DEBUT(CODE="OUI")
@@ -177,6 +179,7 @@ def svg(rows, key, title, path, ymin, ymax):
 
 def main():
     os.makedirs(OUT, exist_ok=True)
+    os.makedirs(DATA, exist_ok=True)
     rows = []
     with tempfile.TemporaryDirectory() as work:
         for cell, (dim, n, size, length) in CELLS.items():
@@ -189,7 +192,7 @@ def main():
                     print(f'{cell:7} {row:6} k={r["k"]!s:4} {r["diagnostic"]:16} err {r["error"]:.2e} '
                           f'cond {r["condition"]:.1e} {r["message"]}', flush=True)
                     rows.append(r)
-    with open(os.path.join(OUT, "sweep.csv"), "w", newline="") as f:
+    with open(os.path.join(DATA, "sweep.csv"), "w", newline="") as f:
         wr = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         wr.writeheader()
         wr.writerows(rows)
@@ -208,7 +211,7 @@ def main():
                              ("—" if math.isnan(r["condition"]) else f'{r["condition"]:.0e}'))
             lines.append(f'| {"∞" if kk == "inf" else kk} | ' + " | ".join(cells) + " |")
         lines.append("")
-    with open(os.path.join(OUT, "table.md"), "w") as f:
+    with open(os.path.join(DATA, "table.md"), "w") as f:
         f.write("\n".join(lines))
     svg(rows, "error", "worst node error / U (mesh and visual nodes); × a NOOK, no point: the run stopped", os.path.join(OUT, "error.svg"),
         -16, 1)
