@@ -9,7 +9,8 @@ at 10^-k * h from a row of nodes, k = 1..14, and exactly through it (k = inf), f
 - axis:  X = 1, along a row (2D) or plane (3D) of nodes.
 
 Each case is the property test's scene (tests/it/xfem/property.rs): equal compression, glued cohesive
-interface (CZM_LIN_MIX, mortar, ORDRE_INT=4), checks at every node of the mesh and of the visual mesh.
+interface (CZM_LIN_MIX, mortar, ORDRE_INT=4 in 2D, 5 in 3D), checks at every node of the mesh and of the
+visual mesh.
 Recorded: the diagnostic, the worst node error relative to U and the condition estimate of the solve.
 Writes the plots docs/stability/error.svg and docs/stability/condition.svg, and the run's data
 target/stability/sweep.csv and its markdown tables target/stability/table.md (docs/stability.md quotes
@@ -39,7 +40,7 @@ MO0 = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(GROUP_MA="{group}", PHENOMENE="MECANIQUE"
 FISS = DEFI_FISS_XFEM(MAILLAGE=MA, TYPE_DISCONTINUITE="INTERFACE", DEFI_FISS=_F(FONC_LN=LN))
 MO = MODI_MODELE_XFEM(MODELE_IN=MO0, FISSURE=FISS, DECOUPE_FACETTE="SOUS_ELEMENTS", CONTACT="MORTAR")
 CTX = DEFI_CONTACT(MODELE=MO, FORMULATION="XFEM",
-                   ZONE=_F(FISS_MAIT=FISS, INTEGRATION="GAUSS", ORDRE_INT=4, ALGO_CONT="CZM",
+                   ZONE=_F(FISS_MAIT=FISS, INTEGRATION="GAUSS", ORDRE_INT={order}, ALGO_CONT="CZM",
                            ALGO_LAGR="VERSION2", RELATION="CZM_LIN_MIX"))
 ROCHE = DEFI_MATERIAU(ELAS=_F(E=5.8e9, NU=0.2), RUPT_FRAG=_F(GC=9.0e3, SIGM_C=5.0e5, PENA_LAGR=100.0))
 CHMAT = AFFE_MATERIAU(MAILLAGE=MA, MODELE=MO, AFFE=_F(TOUT="OUI", MATER=ROCHE))
@@ -84,7 +85,9 @@ def scene(dim, length, phi):
     xs = [x for _, _, x in sides]
     checks = "".join(f'E{x} = FORMULE(VALE="(D{x} - U*(1.0 - COOR_{x}/{length}))/U", U=U, '
                      f'NOM_PARA=["D{x}", "COOR_{x}"])\n' for x in xs)
-    return SCENE.format(phi=phi, para=para, group=group, model=model, bounds=bounds, checks=checks,
+    # Facet rule: 4 Gauss points (degree 7) in 2D, FPG7 (degree 5) in 3D (see tests/it/xfem/property.rs).
+    order = 4 if dim == 2 else 5
+    return SCENE.format(phi=phi, para=para, group=group, model=model, bounds=bounds, checks=checks, order=order,
                         cmps=", ".join(f'"D{x}"' for x in xs), errs=", ".join(f'"ERR_{x}"' for x in xs),
                         opers=", ".join(f'_F(OPERATION="OPER", FORMULE=E{x}, NOM_PARA="ERR_{x}")' for x in xs))
 
