@@ -6,5 +6,7 @@ mod hard_cases;
 mod levelsets;
 mod mortar;
 mod post_erreur;
+mod property;
 mod topose;
 mod topose_linear;
+mod vertex_rows;

@@ -65,6 +65,19 @@ pub fn elements(a: &Args, s: &Setup) -> Result<Elements> {
     for (zi, z) in s.zones.iter().enumerate() {
         let rule = discrete::facet_rule(ndim, z.order).map_err(|e| a.err("CONTACT", e))?;
         let facets = discrete::facets(mesh, xm, z.crack, 1e-9 * lonref);
+        // Heaviside sets with no facet to couple the sides they separate:
+        // the interface would open freely where the scene glues it.
+        if facets.is_empty() || z.packets.is_empty() {
+            return Err(a.err(
+                "CONTACT",
+                format!(
+                    "{}: the interface has no facet: its level set vanishes on whole edges or faces of cells it \
+                     does not cut (an interface along a row or plane of nodes, or within ~1e-6 of an edge's jump of \
+                     one, which xajuls puts on it); coupling its sides there is not supported",
+                    xm.crack_names[z.crack]
+                ),
+            ));
+        }
         let cps = discrete::couplings(mesh, xm, z.crack, &facets, &rule, &z.packet_of, &z.edges, ndim)
             .map_err(|e| a.err("CONTACT", format!("{}: {e}", xm.crack_names[z.crack])))?;
         let mut m = vec![0.0; z.packets.len()];
