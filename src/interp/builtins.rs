@@ -414,14 +414,7 @@ pub fn parse_float_text(s: &str) -> Option<f64> {
 pub fn call_builtin(it: &mut Interp, name: &'static str, args: Vec<Value>, kw: Vec<(String, Value)>) -> Result<Value> {
     if let Some(m) = name.strip_prefix("math.") {
         no_kw(name, &kw)?;
-        let v = call_math(m, &args)?;
-        // As CPython: a finite input giving an infinite result overflows.
-        if matches!(v, Value::Float(f) if f.is_infinite())
-            && args.iter().all(|a| a.as_f64().map(f64::is_finite).unwrap_or(true))
-        {
-            return Err(Error::python("OverflowError: math range error"));
-        }
-        return Ok(v);
+        return math_call(m, &args);
     }
     match name {
         "_F" => {
@@ -738,6 +731,27 @@ fn simple_builtin(name: &str, args: Vec<Value>, kw: &[(String, Value)]) -> Resul
         }
         other => Err(Error::python(format!("built-in '{other}' is not supported"))),
     }
+}
+
+/// `math.<name>(*args)` as CPython computes it (a finite input giving an infinite result overflows).
+pub fn math_call(name: &str, args: &[Value]) -> Result<Value> {
+    let v = call_math(name, args)?;
+    if matches!(v, Value::Float(f) if f.is_infinite())
+        && args.iter().all(|a| a.as_f64().map(f64::is_finite).unwrap_or(true))
+    {
+        return Err(Error::python("OverflowError: math range error"));
+    }
+    Ok(v)
+}
+
+/// Is `name` a function of the math module?
+pub fn is_math_function(name: &str) -> bool {
+    MATH_FUNCS.contains(&name)
+}
+
+/// The value of a constant of the math module (`pi`, `e`, ...).
+pub fn math_constant(name: &str) -> Option<f64> {
+    MATH_CONSTS.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
 }
 
 fn call_math(name: &str, args: &[Value]) -> Result<Value> {

@@ -5,6 +5,7 @@
 //! catalogue or of what commands do.
 
 mod builtins;
+pub mod fast;
 pub mod format;
 mod ops;
 pub mod value;
@@ -58,6 +59,8 @@ pub struct Formula {
     expr: Expr,
     context: Vec<(String, Value)>,
     globals: Scope,
+    /// The expression compiled when it is plain arithmetic ([`fast`]); else the interpreter evaluates it.
+    fast: Option<fast::Fast>,
 }
 
 impl Formula {
@@ -65,7 +68,8 @@ impl Formula {
     pub fn new(text: &str, nom_para: Vec<String>, context: Vec<(String, Value)>, globals: Scope) -> Result<Formula> {
         let expr = crate::syntax::parse_expr(text.trim(), 0)
             .map_err(|e| Error::python(format!("in formula '{}': {}", text.trim(), e.message)))?;
-        Ok(Formula { nom_para, text: text.to_string(), expr, context, globals })
+        let fast = fast::compile(&expr, &nom_para, &context);
+        Ok(Formula { nom_para, text: text.to_string(), expr, context, globals, fast })
     }
 
     /// Evaluate with the parameters bound to `values` (in NOM_PARA order).
@@ -78,6 +82,14 @@ impl Formula {
                 self.nom_para.join(", "),
                 values.len()
             )));
+        }
+        if let Some(f) = &self.fast {
+            let v = f
+                .eval(values)
+                .map_err(|e| Error::runtime(format!("evaluating formula '{}': {}", self.text.trim(), e.msg)))?;
+            return v.as_f64().ok_or_else(|| {
+                Error::runtime(format!("formula '{}' returned a {}, not a number", self.text.trim(), v.type_name()))
+            });
         }
         let locals: Scope = Rc::new(RefCell::new(HashMap::new()));
         {
