@@ -315,6 +315,40 @@ impl<'h> Interp<'h> {
                     return Err(Error::python(format!("AssertionError: {msg}")));
                 }
             }
+            StmtKind::Try { body, handlers, orelse, finalbody } => {
+                let outcome = match self.exec_block(body) {
+                    Ok(Flow::Normal) => self.exec_block(orelse),
+                    Ok(flow) => Ok(flow),
+                    Err(e) => match exception_class(&e) {
+                        None => Err(e),
+                        Some(class) => {
+                            let mut caught = None;
+                            for h in handlers {
+                                if handler_matches(h, class)? {
+                                    caught = Some(h);
+                                    break;
+                                }
+                            }
+                            match caught {
+                                None => Err(e),
+                                Some(h) => {
+                                    if let Some(n) = &h.name {
+                                        // `str(e)`: the message without its class, as CPython shows it.
+                                        let text = e.msg.strip_prefix(class).and_then(|r| r.strip_prefix(": "));
+                                        self.store(n, Value::Str(Rc::from(text.unwrap_or(&e.msg))));
+                                    }
+                                    self.exec_block(&h.body)
+                                }
+                            }
+                        }
+                    },
+                };
+                // `finally` runs whatever happened; its own exit (an error, a return, a break) wins.
+                match self.exec_block(finalbody)? {
+                    Flow::Normal => return outcome,
+                    flow => return Ok(flow),
+                }
+            }
             StmtKind::Raise(e) => {
                 let msg = match e {
                     Some(e) => format::to_str(&self.eval(e)?),
@@ -868,4 +902,49 @@ fn call_concept(c: &ConceptRef, pos: &[Value]) -> Result<Value> {
             args.len()
         ))),
     }
+}
+
+/// The Python exception class of an error a `try` may catch: Python-level errors by the name their
+/// message starts with ("ZeroDivisionError: ..."), an import of a module the subset does not have as
+/// `ModuleNotFoundError`; command failures, unsupported features, time limits and internal errors are
+/// not caught (they end the run, located).
+fn exception_class(e: &Error) -> Option<&str> {
+    match e.kind {
+        crate::diag::ErrorKind::Python => {
+            let head = e.msg.split(':').next().unwrap_or("");
+            let is_class = !head.is_empty()
+                && head.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+                && (head.ends_with("Error") || head.ends_with("Exception") || head.ends_with("Warning"));
+            Some(if is_class { head } else { "Exception" })
+        }
+        crate::diag::ErrorKind::Unsupported if e.msg.starts_with("import ") => Some("ModuleNotFoundError"),
+        _ => None,
+    }
+}
+
+/// Does `except TYPES:` catch an exception of class `class`? TYPES is a class name or a tuple of names
+/// (bare `except:` catches every catchable one); the built-in hierarchy is followed where it groups the
+/// classes command files name.
+fn handler_matches(h: &crate::syntax::ast::Handler, class: &str) -> Result<bool> {
+    let Some(types) = &h.types else { return Ok(true) };
+    let names: Vec<&str> = match &types.kind {
+        ExprKind::Name(n) => vec![n.as_str()],
+        ExprKind::Tuple(items) => items
+            .iter()
+            .map(|i| match &i.kind {
+                ExprKind::Name(n) => Ok(n.as_str()),
+                _ => Err(()),
+            })
+            .collect::<std::result::Result<_, _>>()
+            .map_err(|_| Error::unsupported("except: only exception class names are supported").at(h.span))?,
+        _ => return Err(Error::unsupported("except: only exception class names are supported").at(h.span)),
+    };
+    Ok(names.iter().any(|&n| {
+        n == class
+            || matches!(n, "Exception" | "BaseException")
+            || (n == "ArithmeticError" && matches!(class, "ZeroDivisionError" | "OverflowError" | "FloatingPointError"))
+            || (n == "LookupError" && matches!(class, "KeyError" | "IndexError"))
+            || (n == "ImportError" && class == "ModuleNotFoundError")
+            || (n == "OSError" && matches!(class, "FileNotFoundError" | "PermissionError"))
+    }))
 }

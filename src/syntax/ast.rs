@@ -53,6 +53,13 @@ pub enum StmtKind {
     Global(Vec<String>),
     Assert(Expr, Option<Expr>),
     Raise(Option<Expr>),
+    /// `try:` with its `except` handlers, `else:` and `finally:` blocks.
+    Try {
+        body: Vec<Stmt>,
+        handlers: Vec<Handler>,
+        orelse: Vec<Stmt>,
+        finalbody: Vec<Stmt>,
+    },
     /// `import a.b as c` — (module path, alias)
     Import(Vec<(String, Option<String>)>),
     /// `from m import *` (names = None) or `from m import a as b, ...`
@@ -171,6 +178,16 @@ impl Expr {
     pub fn new(kind: ExprKind, span: Span) -> Self {
         Expr { kind, span }
     }
+}
+
+/// An `except [TYPES [as NAME]]:` clause.
+#[derive(Debug, Clone)]
+pub struct Handler {
+    /// The exception classes (a name or a tuple of names); `None` for a bare `except:`.
+    pub types: Option<Expr>,
+    pub name: Option<String>,
+    pub body: Vec<Stmt>,
+    pub span: Span,
 }
 
 /// A parsed command file.

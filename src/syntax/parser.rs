@@ -151,6 +151,7 @@ fn stmt(p: Pair<Rule>, out: &mut Vec<Stmt>) -> PResult<()> {
         Rule::if_stmt => out.push(if_stmt(p)?),
         Rule::for_stmt => out.push(for_stmt(p)?),
         Rule::while_stmt => out.push(while_stmt(p)?),
+        Rule::try_stmt => out.push(try_stmt(p)?),
         Rule::def_stmt => out.push(def_stmt(p)?),
         r => unreachable!("statement rule {r:?}"),
     }
@@ -227,6 +228,40 @@ fn while_stmt(p: Pair<Rule>) -> PResult<Stmt> {
         None => Vec::new(),
     };
     Ok(Stmt { kind: StmtKind::While { cond, body, orelse }, span: sp })
+}
+
+fn try_stmt(p: Pair<Rule>) -> PResult<Stmt> {
+    let sp = span(&p);
+    let mut inner = p.into_inner();
+    inner.next(); // kw_try
+    let body = suite(inner.next().unwrap())?;
+    let (mut handlers, mut orelse, mut finalbody) = (Vec::new(), Vec::new(), Vec::new());
+    for c in inner {
+        match c.as_rule() {
+            Rule::except_clause => {
+                let hsp = span(&c);
+                let (mut types, mut name, mut body) = (None, None, Vec::new());
+                for part in c.into_inner() {
+                    match part.as_rule() {
+                        Rule::kw_except | Rule::kw_as => {}
+                        Rule::except_types => types = Some(test(part.into_inner().next().unwrap())?),
+                        Rule::ident => name = Some(ident(part)),
+                        Rule::suite => body = suite(part)?,
+                        r => unreachable!("except clause rule {r:?}"),
+                    }
+                }
+                handlers.push(Handler { types, name, body, span: hsp });
+            }
+            Rule::else_clause => orelse = else_suite(c)?,
+            Rule::finally_clause => {
+                let mut fi = c.into_inner();
+                fi.next(); // kw_finally
+                finalbody = suite(fi.next().unwrap())?;
+            }
+            r => unreachable!("try statement rule {r:?}"),
+        }
+    }
+    Ok(Stmt { kind: StmtKind::Try { body, handlers, orelse, finalbody }, span: sp })
 }
 
 fn params(p: Pair<Rule>) -> PResult<Vec<Param>> {
