@@ -132,12 +132,13 @@ pub struct Cutting {
 }
 
 impl Cutting {
-    /// The simplex type of the sub-cells.
+    /// The simplex type of the sub-cells of a parent of dimension `dim`
+    /// (SEG3 for a boundary segment, TRIA6, TETRA10).
     pub fn subcell_type(dim: usize) -> CellType {
-        if dim == 2 {
-            CellType::Tria6
-        } else {
-            CellType::Tetra10
+        match dim {
+            1 => CellType::Seg3,
+            2 => CellType::Tria6,
+            _ => CellType::Tetra10,
         }
     }
 }
@@ -150,6 +151,7 @@ const CRIDIST: f64 = 1e-9;
 
 /// Edges of the sub-simplices (`conare`): end A, end B, mid-node (1-based
 /// local numbers).
+const SEG3_EDGES: [[usize; 3]; 1] = [[1, 2, 3]];
 const TRIA6_EDGES: [[usize; 3]; 3] = [[1, 2, 4], [2, 3, 5], [3, 1, 6]];
 const TETRA10_EDGES: [[usize; 3]; 6] = [[1, 2, 5], [1, 3, 7], [1, 4, 8], [2, 3, 6], [2, 4, 9], [3, 4, 10]];
 
@@ -204,8 +206,10 @@ fn xnormv(a: V3) -> V3 {
 /// The parent cell and the state of its cutting.
 struct Ctx<'a> {
     t: CellType,
-    /// Dimension of the parent (2 or 3).
+    /// Dimension of the parent cell (`ndime`: 1, 2 or 3).
     dim: usize,
+    /// Dimension of the mesh (`ndim`): larger than `dim` for a boundary cell.
+    ndim: usize,
     nno: usize,
     coords: &'a [[f64; 3]],
     /// lsn[crack][node].
@@ -223,6 +227,15 @@ struct Ctx<'a> {
 }
 
 impl Ctx<'_> {
+    /// Edges of the sub-simplices (`conare` of `elrese(ndime)`).
+    fn edges(&self) -> &'static [[usize; 3]] {
+        match self.dim {
+            1 => &SEG3_EDGES,
+            2 => &TRIA6_EDGES,
+            _ => &TETRA10_EDGES,
+        }
+    }
+
     fn interp(&self, xi: &[f64; 3], crack: usize) -> f64 {
         shape(self.t, xi).iter().zip(self.lsn[crack]).map(|(n, v)| n * v).sum()
     }
@@ -265,7 +278,7 @@ pub(super) fn loncar(t: CellType, x: &[[f64; 3]]) -> f64 {
     match t {
         CellType::Hexa8 | CellType::Hexa20 => dist(&x[0], &x[6]),
         CellType::Penta6 => (dist(&x[2], &x[0]) * dist(&x[2], &x[1]) * dist(&x[2], &x[5])).cbrt(),
-        CellType::Seg2 => dist(&x[0], &x[1]),
+        CellType::Seg2 | CellType::Seg3 => dist(&x[0], &x[1]),
         CellType::Tria3 | CellType::Quad4 | CellType::Tria6 | CellType::Quad8 => {
             (dist(&x[0], &x[1]) * dist(&x[0], &x[2])).sqrt()
         }
@@ -317,7 +330,7 @@ impl Ctx<'_> {
     /// `ifiss` (`xdecqu`, then `xalgo2` / `xalg30` / `xalg40`).
     fn decqu(&self, sub: &[Wp], ifiss: usize, fisc: &[(usize, f64)]) -> Result<Decoupe, String> {
         let nnose = sub.len();
-        let edges: &[[usize; 3]] = if self.dim == 2 { &TRIA6_EDGES } else { &TETRA10_EDGES };
+        let edges = self.edges();
         let none = Decoupe { cut: false, inter: Vec::new(), npts: 0, mil: Vec::new() };
         let mut tabls = vec![0.0; nnose];
         let mut som = vec![0.0; fisc.len()];
@@ -341,6 +354,16 @@ impl Ctx<'_> {
             }
         }
         let cut = edges.iter().any(|e| tabls[e[0] - 1] * tabls[e[1] - 1] < 0.0);
+        if !cut && self.dim + 1 == self.ndim && tabls[..=self.dim].iter().filter(|&&v| v == 0.0).count() == self.ndim {
+            // A boundary cell lying in the interface: Code_Aster gives it
+            // the Heaviside value 99, which `xoripe` replaces by the side of
+            // its support cell.
+            return Err(format!(
+                "TOPOSE: the boundary cell lies in the interface of crack {} (its side would be taken from its \
+                 support cell by xoripe), which is not supported",
+                ifiss + 1
+            ));
+        }
         if !cut {
             // Only vertex-type points can be found: nothing is archived.
             return Ok(none);
@@ -439,7 +462,9 @@ impl Ctx<'_> {
         }
         // Configurations Code_Aster refuses (xerfis, first crack only).
         if ifiss == 0 {
-            let bad = if self.dim == 2 {
+            let bad = if self.dim == 1 {
+                n != 1 && npts != 0
+            } else if self.dim == 2 {
                 n <= 1
                     || n > 3
                     || npts > n
@@ -459,8 +484,12 @@ impl Ctx<'_> {
         }
         let vertices: Vec<[f64; 3]> =
             sub.iter().map(|&id| self.pt(id, &[], &[]).map(|p| p.x)).collect::<Result<_, _>>()?;
-        let lonref_sub = loncar(if self.dim == 2 { CellType::Tria6 } else { CellType::Tetra10 }, &vertices);
-        let mil = if self.dim == 2 {
+        let lonref_sub = loncar(Cutting::subcell_type(self.dim), &vertices);
+        // xalgo2 in a 2D mesh; in a 3D mesh xalgo3, which cuts a boundary
+        // triangle as xalgo2 does (xalg20) and has no case for a segment.
+        let mil = if self.dim == 1 && self.ndim == 3 {
+            return Err("TOPOSE: a quadratic boundary segment of a 3D mesh is cut (xalgo3 has no such case)".into());
+        } else if self.dim <= 2 {
             self.algo2(sub, &inter, npts, lonref_sub, ifiss)?
         } else {
             match (n, npts) {
@@ -702,7 +731,7 @@ impl Ctx<'_> {
         mil: &[Pt],
         ifiss: usize,
     ) -> Result<Pt, String> {
-        let edges: &[[usize; 3]] = if self.dim == 2 { &TRIA6_EDGES } else { &TETRA10_EDGES };
+        let edges = self.edges();
         let a1 = inter[ip1 - 1].edge;
         let a2 = inter[ip2 - 1].edge;
         let (mut a, mut b, mut d) = (0, 0, 0);
@@ -757,7 +786,7 @@ impl Ctx<'_> {
 
     /// 2D mid-points (`xalgo2`).
     fn algo2(&self, sub: &[Wp], inter: &[Inter], npts: usize, lonref: f64, ifiss: usize) -> Result<Vec<Pt>, String> {
-        let ed = &TRIA6_EDGES;
+        let ed = self.edges();
         let n = inter.len();
         let shared = |a1: usize, a2: usize| -> usize {
             let mut s = 0;
@@ -774,6 +803,8 @@ impl Ctx<'_> {
             (2, 0) => shared(inter[0].edge, inter[1].edge),
             (3, 1) => shared(inter[1].edge, inter[2].edge),
             (2, 1) => ed[inter[1].edge - 1][0],
+            // A boundary segment: its single edge's first end.
+            _ if self.dim == 1 => inter.first().and_then(|p| p.edge.checked_sub(1)).map_or(0, |k| ed[k][0]),
             _ => 0,
         };
         if noeua == 0 {
@@ -1149,7 +1180,19 @@ impl Ctx<'_> {
         let n = d.inter.len();
         let s = |k: usize| sub[k - 1];
         let mut out: Vec<Vec<Wp>> = Vec::new();
-        if self.dim == 2 {
+        if self.dim == 1 {
+            // A boundary segment cut at an inner point P: (P, A, mid(P, A))
+            // and (P, B, mid(P, B)), the type-1 mid-points being (P, B) then
+            // (P, A).
+            match (n, d.npts) {
+                (1, 0) => {
+                    let e = SEG3_EDGES[d.inter[0].edge.checked_sub(1).ok_or("TOPOSE: xdecqv: bad edge")?];
+                    out.push(vec![I(1), s(e[0]), M(2)]);
+                    out.push(vec![I(1), s(e[1]), M(1)]);
+                }
+                _ => out.push(sub.to_vec()),
+            }
+        } else if self.dim == 2 {
             let ed = &TRIA6_EDGES;
             // a: vertex shared by the edges of points i and j; b, c: their other ends; e: mid-node of the third edge.
             let abce = |a1: usize, a2: usize| -> Option<[usize; 4]> {
@@ -1484,36 +1527,52 @@ impl Ctx<'_> {
 
 /// Cut a BOUNDARY cell of the model (a skin element of dimension lower
 /// than the mesh's, `mesh_dim`) by its interfaces, as TOPOSE does for the
-/// X-FEM boundary elements. Only the linear ones are supported (SEG2, and
-/// TRIA3 / QUAD4 faces of a 3D mesh, see
-/// [`super::topose_linear::topose_linear_boundary`]); the quadratic ones
-/// (SEG3, TRIA6, QUAD8: `xdecqu` / `xdecqv` with `ndime < ndim`) are refused.
+/// X-FEM boundary elements (`te0514` with `ndime < ndim`). The linear ones
+/// (SEG2, and TRIA3 / QUAD4 faces of a 3D mesh) are cut by
+/// [`super::topose_linear::topose_linear_boundary`]. The quadratic ones are
+/// cut as the bulk cells, in the boundary cell's own reference space:
+/// `xdivte` (SEG3 and TRIA6 are their own sub-cell, a QUAD8 face the two
+/// TRIA6 of a QUAD8 with its centre node), `xdecqu` on the sub-cell's edges
+/// (one for a SEG3), the mid-points of `xalgo2` (`xalg20` for a face of a 3D
+/// mesh: the same points), and `xdecqv`: a SEG3 cut at an inner point P
+/// gives (P, 1, mid(P, 1)) and (P, 2, mid(P, 2)), a triangle the children of
+/// the 2D case. A SEG3 is supported in a 2D mesh only (a cut one in a 3D
+/// mesh stops Code_Aster: `xalgo3` has no case for it); a boundary cell
+/// lying in an interface (Heaviside value 99, set by `xoripe`) is refused.
+/// The sub-cells are SEG3 / TRIA6 in Code_Aster's local order; their
+/// orientation is [`super::topose_linear::orient_boundary`]'s.
 pub fn topose_boundary(
     t: CellType,
     mesh_dim: usize,
     coords: &[[f64; 3]],
     cracks: &[CrackInCell],
 ) -> Result<Cutting, String> {
-    super::topose_linear::topose_linear_boundary(t, mesh_dim, coords, cracks)
+    match (t, mesh_dim) {
+        (CellType::Seg3, 2 | 3) | (CellType::Tria6 | CellType::Quad8, 3) => cut_quadratic(t, mesh_dim, coords, cracks),
+        _ => super::topose_linear::topose_linear_boundary(t, mesh_dim, coords, cracks),
+    }
 }
 
 /// Cut a parent cell by its interfaces, as TOPOSE (`te0514`) does. `coords`
 /// and `cracks[k].lsn` follow Code_Aster's local node order; the cracks are
 /// in the cell's order (model order).
 pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Result<Cutting, String> {
-    let (dim, nno) = match t {
-        CellType::Quad8 => (2, 8),
-        CellType::Hexa20 => (3, 20),
+    match t {
+        CellType::Quad8 | CellType::Hexa20 => cut_quadratic(t, t.dim(), coords, cracks),
         CellType::Tria3 | CellType::Quad4 | CellType::Tetra4 | CellType::Penta6 | CellType::Hexa8 => {
-            return super::topose_linear::topose_linear(t, coords, cracks)
+            super::topose_linear::topose_linear(t, coords, cracks)
         }
-        _ => {
-            return Err(format!(
-                "TOPOSE: parent cell type {} is not supported (QUAD8, HEXA20 and the linear TRIA3, QUAD4, TETRA4, PENTA6, HEXA8)",
-                t.name()
-            ))
-        }
-    };
+        _ => Err(format!(
+            "TOPOSE: parent cell type {} is not supported (QUAD8, HEXA20 and the linear TRIA3, QUAD4, TETRA4, PENTA6, HEXA8)",
+            t.name()
+        )),
+    }
+}
+
+/// TOPOSE of a quadratic cell of dimension `t.dim()` in a mesh of dimension
+/// `ndim` (a QUAD8 or HEXA20 parent, or a SEG3 / TRIA6 / QUAD8 boundary cell).
+fn cut_quadratic(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Result<Cutting, String> {
+    let (dim, nno) = (t.dim(), t.nnodes());
     if coords.len() != nno {
         return Err(format!("TOPOSE: {} needs {nno} node coordinates, got {}", t.name(), coords.len()));
     }
@@ -1532,6 +1591,7 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
     let mut ctx = Ctx {
         t,
         dim,
+        ndim,
         nno,
         coords,
         lsn,
@@ -1541,17 +1601,23 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
         pmil: Vec::new(),
         lonref: loncar(t, coords),
     };
-    let full = if dim == 2 { CellType::Quad9 } else { CellType::Hexa27 };
+    // Centre nodes (`ndcent`): QUAD8 and HEXA20 only.
+    let full = match t {
+        CellType::Quad8 => CellType::Quad9,
+        CellType::Hexa20 => CellType::Hexa27,
+        _ => t,
+    };
     for xi in &node_coords(full)[nno..] {
         let p = ctx.to_real(*xi);
         let l = (0..cracks.len()).map(|k| ctx.interp(xi, k)).collect();
         ctx.centre.push(p);
         ctx.centre_lsn.push(l);
     }
-    let mut subs: Vec<Vec<Wp>> = if dim == 2 {
-        QUAD8_SPLIT.iter().map(|s| s.to_vec()).collect()
-    } else {
-        HEXA20_SPLIT.iter().map(|s| s.to_vec()).collect()
+    let mut subs: Vec<Vec<Wp>> = match t {
+        CellType::Quad8 => QUAD8_SPLIT.iter().map(|s| s.to_vec()).collect(),
+        CellType::Hexa20 => HEXA20_SPLIT.iter().map(|s| s.to_vec()).collect(),
+        // SEG3, TRIA6: the cell itself (`xdivte`).
+        _ => vec![(1..=nno).map(|j| N(j as u8)).collect()],
     };
     let mut heav: Vec<Vec<i32>> = vec![vec![0; cracks.len()]; subs.len()];
     // (intersection point, earlier crack it lies on).
@@ -1586,7 +1652,7 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
                 // on its level set) is on that crack too: a junction point
                 // (`xdecqu`'s najonc/nbjonc). On a curved interface the
                 // parent interpolation there is only near zero.
-                let e = if dim == 2 { TRIA6_EDGES[p.edge - 1] } else { TETRA10_EDGES[p.edge - 1] };
+                let e = ctx.edges()[p.edge - 1];
                 let (na, nb) = (subs[it][e[0] - 1], subs[it][e[1] - 1]);
                 for f in 0..ifiss {
                     let on = |id: Wp| ctx.node_lsn(id, f, &[], &[]).map(|v| v.abs() <= 1e-12 * ctx.lonref);
@@ -1720,7 +1786,8 @@ pub fn tiling_defect(t: CellType, cut: &Cutting) -> f64 {
     let Some(first) = cut.subcells.first() else { return f64::INFINITY };
     let dim = t.dim();
     let st = match (dim, first.nodes.len()) {
-        (1, _) => CellType::Seg2,
+        (1, 2) => CellType::Seg2,
+        (1, _) => CellType::Seg3,
         (2, 3) => CellType::Tria3,
         (2, _) => CellType::Tria6,
         (_, 4) => CellType::Tetra4,

@@ -556,12 +556,19 @@ pub fn topose_linear_boundary(
 /// mesh's dimension holding it); a sub-cell whose normal — (y_b − y_a,
 /// −(x_b − x_a)) of its first two vertices in 2D, (b − a) × (c − a) in 3D —
 /// points against it has its vertices 1 and 2 (2D) or 2 and 3 (3D)
-/// swapped. Boundary cells of lower dimension (a SEG2 in 3D) are left as
-/// they are, as `xoripe` does. Returns the number of sub-cells reoriented.
+/// swapped; a TRIA6 sub-cell of a face of a 3D mesh has its mid-nodes 4
+/// and 6 swapped too, a SEG3 of a 2D mesh keeps its mid-node 3 (`xoripe`'s
+/// `quadratique` is for 3D only). Boundary cells of lower dimension (a SEG2
+/// in 3D) are left as they are, as `xoripe` does: the caller passes only
+/// cells of dimension `mesh_dim − 1`. Returns the number of sub-cells
+/// reoriented.
 pub fn orient_boundary(cut: &mut Cutting, mesh_dim: usize, outward: &[f64; 3]) -> usize {
     let mut n = 0;
+    // Linear and quadratic sub-cells of dimension mesh_dim − 1.
+    let quadratic = if mesh_dim == 2 { 3 } else { 6 };
     for sc in cut.subcells.iter_mut() {
-        if sc.nodes.len() != mesh_dim {
+        let len = sc.nodes.len();
+        if len != mesh_dim && len != quadratic {
             continue;
         }
         let p = |k: usize| V3::from(cut.points[sc.nodes[k]].x);
@@ -570,6 +577,9 @@ pub fn orient_boundary(cut: &mut Cutting, mesh_dim: usize, outward: &[f64; 3]) -
         let d: f64 = (0..mesh_dim).map(|j| normal[j] * outward[j]).sum();
         if d < 0.0 {
             sc.nodes.swap(mesh_dim - 2, mesh_dim - 1);
+            if mesh_dim == 3 && len == quadratic {
+                sc.nodes.swap(3, 5);
+            }
             n += 1;
         }
     }

@@ -260,8 +260,9 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
     // The boundary cells of the model (skin elements) with a Heaviside node
     // are X-FEM elements too: TOPOSE cuts them (te0514 with ndime < ndim)
     // and POST_MAIL_XFEM makes sub-cells of them, which moves its node
-    // counter. Only the linear types are cut; the others are left out, and
-    // POST_MAIL_XFEM refuses a model with such a cell (see `visual_of`).
+    // counter. SEG2 / SEG3 and TRIA3 / QUAD4 / TRIA6 / QUAD8 faces are cut;
+    // the others are left out, and POST_MAIL_XFEM refuses a model with such
+    // a cell (see `visual_of`).
     let mut boundary = BTreeMap::new();
     for (c, el) in elements.iter().enumerate() {
         if !el.as_ref().is_some_and(|e| e.role == crate::concepts::model::Role::Skin)
@@ -274,7 +275,12 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
         if seen.is_empty()
             || !matches!(
                 mesh.cell_types[c],
-                crate::mesh::CellType::Seg2 | crate::mesh::CellType::Tria3 | crate::mesh::CellType::Quad4
+                crate::mesh::CellType::Seg2
+                    | crate::mesh::CellType::Tria3
+                    | crate::mesh::CellType::Quad4
+                    | crate::mesh::CellType::Seg3
+                    | crate::mesh::CellType::Tria6
+                    | crate::mesh::CellType::Quad8
             )
         {
             continue;
@@ -379,7 +385,7 @@ fn visual_of(model: &crate::concepts::ConceptRef, prefixes: &Prefixes) -> Result
     }) {
         return Err(Error::runtime(format!(
             "{}: the boundary cell {} ({}) of the model has a Heaviside-enriched node; Code_Aster cuts it \
-             into sub-cells, which is only supported for SEG2, TRIA3 and QUAD4 (the node names would differ)",
+             into sub-cells, which is only supported for SEG2, SEG3, TRIA3, QUAD4, TRIA6 and QUAD8 (the node names would differ)",
             model.label(),
             mesh.cell_names[c],
             mesh.cell_types[c].name()

@@ -1,5 +1,5 @@
 //! The X-FEM library and stages on the real meshes: level sets and enrichment, TOPOSE cutting (quadratic
-//! and linear parents), mortar packets, the cohesive law, interfaces near or through nodes, and POST_ERREUR
+//! and linear parents, quadratic boundary cells), mortar packets, the cohesive law, interfaces near or through nodes, and POST_ERREUR
 //! on a cut cell.
 mod cohesive;
 mod hard_cases;
@@ -8,5 +8,6 @@ mod mortar;
 mod post_erreur;
 mod property;
 mod topose;
+mod topose_boundary;
 mod topose_linear;
 mod vertex_rows;
