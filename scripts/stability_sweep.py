@@ -11,6 +11,8 @@ at 10^-k * h from a row of nodes, k = 1..14, and exactly through it (k = inf), f
 Each case is the property test's scene (tests/it/xfem/property.rs): equal compression, glued cohesive
 interface (CZM_LIN_MIX, mortar, ORDRE_INT=4 in 2D, 5 in 3D), checks at every node of the mesh and of the
 visual mesh.
+Then, on QUAD8 and HEXA20 (row12, diag, k = 1, 6, 12), PENA_LAGR = 1e-3 .. 1e6 and E = 1 .. 1e12 (SIGM_C
+and GC scaled with E): target/stability/params.csv and params.md.
 Recorded: the diagnostic, the worst node error relative to U and the condition estimate of the solve.
 Writes the plots docs/stability/error.svg and docs/stability/condition.svg, and the run's data
 target/stability/sweep.csv and its markdown tables target/stability/table.md (docs/stability.md quotes
@@ -42,7 +44,7 @@ MO = MODI_MODELE_XFEM(MODELE_IN=MO0, FISSURE=FISS, DECOUPE_FACETTE="SOUS_ELEMENT
 CTX = DEFI_CONTACT(MODELE=MO, FORMULATION="XFEM",
                    ZONE=_F(FISS_MAIT=FISS, INTEGRATION="GAUSS", ORDRE_INT={order}, ALGO_CONT="CZM",
                            ALGO_LAGR="VERSION2", RELATION="CZM_LIN_MIX"))
-ROCHE = DEFI_MATERIAU(ELAS=_F(E=5.8e9, NU=0.2), RUPT_FRAG=_F(GC=9.0e3, SIGM_C=5.0e5, PENA_LAGR=100.0))
+ROCHE = DEFI_MATERIAU(ELAS=_F(E={young!r}, NU=0.2), RUPT_FRAG=_F(GC={gc!r}, SIGM_C={sigc!r}, PENA_LAGR={pena!r}))
 CHMAT = AFFE_MATERIAU(MAILLAGE=MA, MODELE=MO, AFFE=_F(TOUT="OUI", MATER=ROCHE))
 BLOC = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=({bounds}))
 LINST = DEFI_LIST_REEL(DEBUT=0.0, INTERVALLE=_F(JUSQU_A=1.0, NOMBRE=1))
@@ -73,7 +75,7 @@ ROWS = {
 KS = list(range(1, 15)) + [math.inf]
 
 
-def scene(dim, length, phi):
+def scene(dim, length, phi, young=5.8e9, pena=100.0):
     if dim == 2:
         model, group, para = "D_PLAN", "SURFACE", '["X", "Y"]'
         sides = [("GAUCHE", "DROITE", "X"), ("BAS", "HAUT", "Y")]
@@ -87,17 +89,19 @@ def scene(dim, length, phi):
                      f'NOM_PARA=["D{x}", "COOR_{x}"])\n' for x in xs)
     # Facet rule: 4 Gauss points (degree 7) in 2D, FPG7 (degree 5) in 3D (see tests/it/xfem/property.rs).
     order = 4 if dim == 2 else 5
-    return SCENE.format(phi=phi, para=para, group=group, model=model, bounds=bounds, checks=checks, order=order,
+    # A change of the stress unit scales E, SIGM_C and GC (a stress times a length) alike.
+    s = young / 5.8e9
+    return SCENE.format(young=young, pena=pena, sigc=5.0e5 * s, gc=9.0e3 * s, phi=phi, para=para, group=group, model=model, bounds=bounds, checks=checks, order=order,
                         cmps=", ".join(f'"D{x}"' for x in xs), errs=", ".join(f'"ERR_{x}"' for x in xs),
                         opers=", ".join(f'_F(OPERATION="OPER", FORMULE=E{x}, NOM_PARA="ERR_{x}")' for x in xs))
 
 
-def run_case(work, cell, mesh, dim, length, row, k):
+def run_case(work, cell, mesh, dim, length, row, k, young=5.8e9, pena=100.0):
     delta = 0.0 if k == math.inf else 10.0 ** -k
     phi = f"{ROWS[dim][row]}-{delta!r}"
     comm = os.path.join(work, "case.comm")
     with open(comm, "w") as f:
-        f.write(scene(dim, length, phi))
+        f.write(scene(dim, length, phi, young, pena))
     out = os.path.join(work, "out")
     subprocess.run([ASTER, "run", comm, "--unit", f"20={mesh}", "--out", out, "-q"], capture_output=True)
     mess = open(os.path.join(out, "case.mess")).read() if os.path.exists(os.path.join(out, "case.mess")) else ""
@@ -219,6 +223,66 @@ def main():
     svg(rows, "error", "worst node error / U (mesh and visual nodes); × a NOOK, no point: the run stopped", os.path.join(OUT, "error.svg"),
         -16, 1)
     svg(rows, "condition", "condition estimate of the solve (no point: the run stopped; above 1e20 drawn at 1e20)", os.path.join(OUT, "condition.svg"), 8, 20)
+
+    params()
+
+
+PENAS = [1e-3, 1e-2, 1e-1, 1.0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6]
+YOUNGS = [1.0, 1e2, 1e4, 1e6, 1e8, 1e10, 1e12]
+PARAM_KS = [1, 6, 12]
+
+
+def params():
+    """PENA_LAGR (E = 5.8e9) and E (PENA_LAGR = 100; SIGM_C and GC scaled with E, a change of the stress
+    unit) on the quadratic cells, rows row12 and diag, k = 1, 6, 12: target/stability/params.csv and
+    params.md (per value, the worst error and condition over the three k)."""
+    cells = ["QUAD8", "HEXA20"]
+    out = []
+    with tempfile.TemporaryDirectory() as work:
+        for cell in cells:
+            dim, n, size, length = CELLS[cell]
+            mesh = os.path.join(work, f"{cell}.med")
+            subprocess.run([ASTER, "mesh", "box", "--cell", cell, "--n", n, "--size", size, "-o", mesh],
+                           check=True, capture_output=True)
+            for name, values in (("PENA_LAGR", PENAS), ("E", YOUNGS)):
+                for v in values:
+                    young, pena = (5.8e9, v) if name == "PENA_LAGR" else (v, 100.0)
+                    for row in ("row12", "diag"):
+                        for k in PARAM_KS:
+                            r = run_case(work, cell, mesh, dim, length, row, k, young, pena)
+                            r.update(param=name, value=v)
+                            print(f'{cell:7} {row:6} k={k:<3} {name}={v:.0e} {r["diagnostic"]:16} '
+                                  f'err {r["error"]:.2e} cond {r["condition"]:.1e} {r["message"]}', flush=True)
+                            out.append(r)
+    with open(os.path.join(DATA, "params.csv"), "w", newline="") as f:
+        wr = csv.DictWriter(f, fieldnames=list(out[0].keys()))
+        wr.writeheader()
+        wr.writerows(out)
+    series = [(c, rw) for c in cells for rw in ("row12", "diag")]
+    lines = []
+    for name, values in (("PENA_LAGR", PENAS), ("E", YOUNGS)):
+        lines.append(f"{name}: worst node error / U, and largest condition estimate, over k = "
+                     + ", ".join(map(str, PARAM_KS)) + "\n")
+        lines.append(f"| {name} | " + " | ".join(f"{c} {rw}" for c, rw in series) + " |")
+        lines.append("|---" * (len(series) + 1) + "|")
+        for v in values:
+            cells_md = []
+            for c, rw in series:
+                rs = [x for x in out if x["param"] == name and x["value"] == v and x["cell"] == c and x["row"] == rw]
+                if any(x["diagnostic"] not in ("OK", "NOOK_TEST_RESU") for x in rs):
+                    cells_md.append("**stop**")
+                    continue
+                err = max(x["error"] for x in rs)
+                cond = max(x["condition"] for x in rs)
+                e = f"{err:.1e}" if all(x["diagnostic"] == "OK" for x in rs) else f"**{err:.1e}**"
+                cells_md.append(f"{e} / {cond:.0e}")
+            lines.append(f"| {v:.0e} | " + " | ".join(cells_md) + " |")
+        lines.append("")
+    msgs = sorted({x["message"] for x in out if x["message"]})
+    if msgs:
+        lines.append("stops: " + "; ".join(msgs) + "\n")
+    with open(os.path.join(DATA, "params.md"), "w") as f:
+        f.write("\n".join(lines))
 
 
 if __name__ == "__main__":

@@ -579,8 +579,9 @@ pub fn lip_pressure(
 }
 
 /// The mortar coupling of one crack in one cell: `c` couples the cell's
-/// unknowns to the packets' μ (∫ (P[[N]])ᵀ Φ_k), `mm` the packets' w and μ
-/// (∫ Φ_k Φ_l), `m` the lumped weights (∫ Φ_k).
+/// unknowns to the packets' μ (∫ (P[[N]])ᵀ Φ_k^q), `mm` the packets' w and μ
+/// (∫ Φ_k^q Φ_l^q, per component q), `m` the lumped weights (∫ Φ_k). Φ_k^q
+/// is Φ_k but where some packets' component q is removed ([`dead_components`]).
 #[derive(Debug, Clone)]
 pub struct Coupling {
     pub cell: usize,
@@ -589,7 +590,7 @@ pub struct Coupling {
     pub packets: Vec<usize>,
     /// Row-major (n_cell_dofs × (npk·ndim)).
     pub c: Vec<f64>,
-    /// npk × npk.
+    /// ndim × npk × npk (component q at q·npk², row-major).
     pub mm: Vec<f64>,
     pub m: Vec<f64>,
 }
@@ -610,6 +611,115 @@ fn multiplier_functions(lin: &[f64], active: &[Option<usize>], packets: &[usize]
     phi
 }
 
+/// The multiplier functions of component q: those of the packets whose
+/// component q is removed (`dead`) spread equally over the others of the cell
+/// (as `xmofhm` spreads inactive vertices), or dropped when none is left.
+fn component_functions(phi: &[f64], dead: &[bool]) -> Vec<f64> {
+    let nlive = dead.iter().filter(|d| !**d).count();
+    let spare: f64 = phi.iter().zip(dead).filter(|(_, d)| **d).map(|(v, _)| v).sum();
+    phi.iter().zip(dead).map(|(v, &d)| if d || nlive == 0 { 0.0 } else { v + spare / nlive as f64 }).collect()
+}
+
+/// The active vertices of crack `g`'s multipliers in cell `c` (`xmulhm`): ends
+/// of its cut edges and vertex points, with their packets; None when a node of
+/// a cut edge has no packet.
+fn active_vertices(
+    mesh: &Mesh,
+    c: usize,
+    packet_of: &BTreeMap<usize, usize>,
+    active_edges: &BTreeSet<(usize, usize)>,
+) -> Result<Vec<Option<usize>>, String> {
+    let t = mesh.cell_types[c];
+    let nodes = &mesh.cells[c];
+    let nv = crate::fem::elasticity::vertex_type(t).nnodes();
+    let mut active: Vec<Option<usize>> = vec![None; nv];
+    for (l, &n) in nodes[..nv].iter().enumerate() {
+        if active_edges.contains(&(n, n)) {
+            active[l] = packet_of.get(&n).copied();
+        }
+    }
+    for e in super::levelset::edges(t) {
+        let (a, b) = (nodes[e[0]], nodes[e[1]]);
+        if active_edges.contains(&(a.min(b), a.max(b))) {
+            for l in [e[0], e[1]] {
+                let k = packet_of.get(&nodes[l]).ok_or_else(|| {
+                    format!("node {} of a cut edge belongs to no multiplier packet", mesh.node_names[nodes[l]])
+                })?;
+                active[l] = Some(*k);
+            }
+        }
+    }
+    Ok(active)
+}
+
+/// The multiplier components (packet, q of the local basis n, τ1, τ2) that
+/// test only jumps the kinematic conditions prescribe, on linear cells.
+///
+/// A component q of packet k is removed when every cell where k is active is
+/// linear and, at every facet point of those cells, the basis vector q has no
+/// part along a direction d in which some node of the packet has a free jump
+/// (`fixed(node, d)`: every Heaviside unknown of the node in direction d is
+/// prescribed). On linear cells each packet brings one jump function per
+/// component: where the conditions fix it, the packet's multiplier is one
+/// function too many, and the P1 multipliers against the free P1 jumps leave
+/// a null space (the tangent is singular: the multiplier is arbitrary there and
+/// wakes the cohesive law). Quadratic cells keep free mid-side jumps and are
+/// left as they are.
+#[allow(clippy::too_many_arguments)]
+pub fn dead_components(
+    mesh: &Mesh,
+    xm: &XfemModel,
+    g: usize,
+    facets: &[Facet],
+    rule: &QuadratureRule,
+    packets: &[Vec<usize>],
+    packet_of: &BTreeMap<usize, usize>,
+    active_edges: &BTreeSet<(usize, usize)>,
+    ndim: usize,
+    fixed: &dyn Fn(usize, usize) -> bool,
+) -> Result<BTreeSet<(usize, usize)>, String> {
+    let mut by_cell: BTreeMap<usize, Vec<&Facet>> = BTreeMap::new();
+    for f in facets {
+        by_cell.entry(f.cell).or_default().push(f);
+    }
+    // Directions in which every node of the packet has its jump prescribed.
+    let fixed_dirs: Vec<Vec<bool>> =
+        packets.iter().map(|p| (0..ndim).map(|d| p.iter().all(|&n| fixed(n, d))).collect()).collect();
+    // Candidates: (k, q) still possible.
+    let mut alive = vec![vec![true; ndim]; packets.len()];
+    let mut seen = vec![false; packets.len()];
+    for (c, fs) in by_cell {
+        let t = mesh.cell_types[c];
+        let active = active_vertices(mesh, c, packet_of, active_edges)?;
+        let linear = t.nnodes() == t.nvertices();
+        let nodes = &mesh.cells[c];
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let mut points = Vec::new();
+        for f in &fs {
+            points.extend(facet_points(t, &coords, nodes, &xm.lsn[g], f, rule)?);
+        }
+        for &k in active.iter().flatten() {
+            seen[k] = true;
+            for (q, al) in alive[k].iter_mut().enumerate() {
+                let ok = linear
+                    && points.iter().all(|p| (0..ndim).all(|d| fixed_dirs[k][d] || p.basis[q][d].abs() <= 1e-12));
+                if !ok {
+                    *al = false;
+                }
+            }
+        }
+    }
+    let mut out = BTreeSet::new();
+    for (k, a) in alive.iter().enumerate() {
+        for (q, &dead) in a.iter().enumerate() {
+            if dead && seen[k] {
+                out.insert((k, q));
+            }
+        }
+    }
+    Ok(out)
+}
+
 /// Build the couplings of crack `g` from its facets. `packet_of` maps a mesh
 /// node to its packet; `active_edges` are the crack's cut vertex edges, and (v, v) for its vertex points (the
 /// active vertices of a cell are the ends of its edges in that set).
@@ -622,6 +732,7 @@ pub fn couplings(
     rule: &QuadratureRule,
     packet_of: &BTreeMap<usize, usize>,
     active_edges: &BTreeSet<(usize, usize)>,
+    dead: &BTreeSet<(usize, usize)>,
     ndim: usize,
 ) -> Result<Vec<Coupling>, String> {
     let mut by_cell: BTreeMap<usize, Vec<&Facet>> = BTreeMap::new();
@@ -634,27 +745,10 @@ pub fn couplings(
         let nodes = &mesh.cells[c];
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
         let vt = crate::fem::elasticity::vertex_type(t);
-        let nv = vt.nnodes();
         // Active vertices (`xmulhm`): ends of cut edges of this cell, and
         // vertices where the interface passes (vertex points, listed as
         // degenerate edges (v, v)).
-        let mut active: Vec<Option<usize>> = vec![None; nv];
-        for (l, &n) in nodes[..nv].iter().enumerate() {
-            if active_edges.contains(&(n, n)) {
-                active[l] = packet_of.get(&n).copied();
-            }
-        }
-        for e in super::levelset::edges(t) {
-            let (a, b) = (nodes[e[0]], nodes[e[1]]);
-            if active_edges.contains(&(a.min(b), a.max(b))) {
-                for l in [e[0], e[1]] {
-                    let k = packet_of.get(&nodes[l]).ok_or_else(|| {
-                        format!("node {} of a cut edge belongs to no multiplier packet", mesh.node_names[nodes[l]])
-                    })?;
-                    active[l] = Some(*k);
-                }
-            }
-        }
+        let active = active_vertices(mesh, c, packet_of, active_edges)?;
         if active.iter().all(|a| a.is_none()) {
             // No cut edge here (the interface passes through vertices only):
             // no multiplier lives on these facets.
@@ -668,7 +762,8 @@ pub fn couplings(
         let cols = cell_columns(nodes, xm, ndim);
         let nd = cols.len();
         let mut cm = vec![0.0; nd * npk * ndim];
-        let mut mm = vec![0.0; npk * npk];
+        let mut mm = vec![0.0; ndim * npk * npk];
+        let dead_q: Vec<Vec<bool>> = (0..ndim).map(|q| pk.iter().map(|&k| dead.contains(&(k, q))).collect()).collect();
         let mut m = vec![0.0; npk];
         let code = |s: &[i32]| super::levelset::region_code(s);
         for f in fs {
@@ -677,10 +772,13 @@ pub fn couplings(
                 let ff = shape(t, &p.xi);
                 let lin = shape(vt, &p.xi);
                 let phi = multiplier_functions(&lin, &active, &pk);
+                let phq: Vec<Vec<f64>> = dead_q.iter().map(|d| component_functions(&phi, d)).collect();
                 for k in 0..npk {
                     m[k] += p.w * phi[k];
-                    for l in 0..npk {
-                        mm[k * npk + l] += p.w * phi[k] * phi[l];
+                    for (q, ph) in phq.iter().enumerate() {
+                        for l in 0..npk {
+                            mm[q * npk * npk + k * npk + l] += p.w * ph[k] * ph[l];
+                        }
                     }
                 }
                 // Jump of each unknown, projected on the local basis.
@@ -694,7 +792,7 @@ pub fn couplings(
                     let v = ff[a] * jc;
                     for k in 0..npk {
                         for q in 0..ndim {
-                            cm[r * npk * ndim + k * ndim + q] += p.w * v * p.basis[q][i] * phi[k];
+                            cm[r * npk * ndim + k * ndim + q] += p.w * v * p.basis[q][i] * phq[q][k];
                         }
                     }
                 }

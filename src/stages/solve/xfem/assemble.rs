@@ -39,10 +39,14 @@ pub struct Elements {
     pub lins: Vec<Lin>,
     pub laws: Vec<Law>,
     pub lumped: Vec<Vec<f64>>,
+    /// Per zone, the multiplier components (packet, q) removed because they test only prescribed jumps
+    /// (`discrete::dead_components`): their λ, w and μ are held at zero.
+    pub dead: Vec<BTreeSet<(usize, usize)>>,
     pub time: Duration,
 }
 
-pub fn elements(a: &Args, s: &Setup) -> Result<Elements> {
+/// `fixed`: the unknowns the kinematic conditions prescribe (at the first instant solved).
+pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>) -> Result<Elements> {
     let t0 = Instant::now();
     let (mesh, xm, xd, md, ndim) = (&s.mesh, &s.xm, &s.xd, s.md, s.ndim());
     let mut lins: Vec<Lin> = Vec::new();
@@ -58,6 +62,9 @@ pub fn elements(a: &Args, s: &Setup) -> Result<Elements> {
     }
     let mut laws: Vec<Law> = Vec::new();
     let mut lumped: Vec<Vec<f64>> = Vec::new();
+    let mut dead_all: Vec<BTreeSet<(usize, usize)>> = Vec::new();
+    // A node's jump in direction d is prescribed when every Heaviside unknown of the node in d is.
+    let fixed_jump = |n: usize, d: usize| xd.sets[n].iter().all(|&b| fixed.contains(&(b + d)));
     let lonref = {
         let (lo, hi) = mesh.bounding_box().unwrap_or(([0.0; 3], [1.0; 3]));
         (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
@@ -78,8 +85,22 @@ pub fn elements(a: &Args, s: &Setup) -> Result<Elements> {
                 ),
             ));
         }
-        let cps = discrete::couplings(mesh, xm, z.crack, &facets, &rule, &z.packet_of, &z.edges, ndim)
-            .map_err(|e| a.err("CONTACT", format!("{}: {e}", xm.crack_names[z.crack])))?;
+        let crack_err = |e: String| a.err("CONTACT", format!("{}: {e}", xm.crack_names[z.crack]));
+        let dead = discrete::dead_components(
+            mesh,
+            xm,
+            z.crack,
+            &facets,
+            &rule,
+            &z.packets,
+            &z.packet_of,
+            &z.edges,
+            ndim,
+            &fixed_jump,
+        )
+        .map_err(crack_err)?;
+        let cps = discrete::couplings(mesh, xm, z.crack, &facets, &rule, &z.packet_of, &z.edges, &dead, ndim)
+            .map_err(crack_err)?;
         let mut m = vec![0.0; z.packets.len()];
         for cp in &cps {
             lins.push(coupling(&s.mesh, &s.xd, z.crack, cp, ndim));
@@ -101,9 +122,10 @@ pub fn elements(a: &Args, s: &Setup) -> Result<Elements> {
             laws.push(Law { zone: zi, m: mk, base: xd.packets[z.crack][k] });
         }
         lumped.push(m);
+        dead_all.push(dead);
     }
 
-    Ok(Elements { lins, laws, lumped, time: t0.elapsed() })
+    Ok(Elements { lins, laws, lumped, dead: dead_all, time: t0.elapsed() })
 }
 
 /// The mortar coupling of one cell with the packets it touches: the unknowns (the cell's, then w and μ
@@ -138,7 +160,7 @@ fn coupling(mesh: &crate::mesh::Mesh, xd: &XDofs, crack: usize, cp: &Coupling, n
     for k in 0..np {
         for l in 0..np {
             for q in 0..ndim {
-                let v = -cp.mm[k * np + l];
+                let v = -cp.mm[q * np * np + k * np + l];
                 ke[muof(k, q) * nd + wof(l, q)] += v;
                 ke[wof(k, q) * nd + muof(l, q)] += v;
             }

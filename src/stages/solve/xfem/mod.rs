@@ -59,7 +59,12 @@ fn solve_xfem(
     }
     let t_start = Instant::now();
     let s = setup::setup(a, model)?;
-    let el = assemble::elements(a, &s)?;
+    // The unknowns the kinematic conditions prescribe, at the first instant solved: multiplier components
+    // that test only prescribed jumps are removed (`discrete::dead_components`).
+    let t_first = times.get(1).or(times.last()).copied().unwrap_or(0.0);
+    let (cons, _, _) = conditions::constraints(a, model, &s, t_first)?;
+    let fixed: std::collections::BTreeSet<usize> = cons.imposed.iter().map(|&(d, _)| d).collect();
+    let el = assemble::elements(a, &s, &fixed)?;
     // ARCHIVAGE (STAT_NON_LINE): the instants and fields stored.
     let archive = if statics { None } else { Some(crate::stages::core::newton::Archive::from_args(a, &times)?) };
     let mut run = step::run(a, model, &s, &el, &times, statics)?;

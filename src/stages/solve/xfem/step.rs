@@ -51,7 +51,17 @@ pub fn run(a: &Args, model: &ConceptRef, s: &Setup, el: &Elements, times: &[f64]
     // The symbolic analysis, reused across Newton iterations and instants while the pattern holds.
     let mut analysis: Option<Analysis> = None;
     for (n, &t) in times.iter().enumerate().skip(1) {
-        let (cons, hydr, pins) = super::conditions::constraints(a, model, s, t)?;
+        let (mut cons, hydr, pins) = super::conditions::constraints(a, model, s, t)?;
+        // Removed multiplier components: their λ, w and μ are zero.
+        for (zi, dead) in el.dead.iter().enumerate() {
+            let crack = s.zones[zi].crack;
+            for &(k, q) in dead {
+                let b = xd.packets[crack][k];
+                for off in [0, ndim, 2 * ndim] {
+                    cons.impose(b + off + q, 0.0);
+                }
+            }
+        }
         if n == 1 {
             run.hm_report = hydr;
             run.pinned = pins;
