@@ -527,6 +527,15 @@ pub fn facet_points(
     Ok(out)
 }
 
+/// The facets grouped by the cell they lie in, in cell order.
+fn by_cell(facets: &[Facet]) -> BTreeMap<usize, Vec<&Facet>> {
+    let mut m: BTreeMap<usize, Vec<&Facet>> = BTreeMap::new();
+    for f in facets {
+        m.entry(f.cell).or_default().push(f);
+    }
+    m
+}
+
 /// The nodal forces of a pressure `p` on both lips of crack `g` (PRES_REP with FISSURE): on every facet,
 /// ∫ p n·[[δu]] with n from the − to the + side, so that a positive pressure pushes the lips apart. Per
 /// cell that sees the crack, the forces in [`XDofs::cell_dofs`] order; only Heaviside unknowns carry
@@ -540,12 +549,8 @@ pub fn lip_pressure(
     ndim: usize,
     p: &dyn Fn(&[f64; 3]) -> Result<f64, String>,
 ) -> Result<Vec<(usize, Vec<f64>)>, String> {
-    let mut by_cell: BTreeMap<usize, Vec<&Facet>> = BTreeMap::new();
-    for f in facets {
-        by_cell.entry(f.cell).or_default().push(f);
-    }
     let mut out = Vec::new();
-    for (c, fs) in by_cell {
+    for (c, fs) in by_cell(facets) {
         let t = mesh.cell_types[c];
         let nodes = &mesh.cells[c];
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
@@ -735,12 +740,8 @@ pub fn couplings(
     dead: &BTreeSet<(usize, usize)>,
     ndim: usize,
 ) -> Result<Vec<Coupling>, String> {
-    let mut by_cell: BTreeMap<usize, Vec<&Facet>> = BTreeMap::new();
-    for f in facets {
-        by_cell.entry(f.cell).or_default().push(f);
-    }
     let mut out = Vec::new();
-    for (c, fs) in by_cell {
+    for (c, fs) in by_cell(facets) {
         let t = mesh.cell_types[c];
         let nodes = &mesh.cells[c];
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
