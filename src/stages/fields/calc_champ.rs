@@ -101,7 +101,7 @@ pub fn siro_elem(p: &Problem, model: &ConceptRef, depl: &[f64], only: &dyn Fn(&u
 // ------------------------------------------------------------------ CALC_CHAMP
 
 /// Average ELNO values to nodes over the cells sharing each node.
-fn to_nodes(mesh: &Mesh, cells: &[Option<Vec<f64>>], ncmp: usize) -> Vec<f64> {
+pub(super) fn to_nodes(mesh: &Mesh, cells: &[Option<Vec<f64>>], ncmp: usize) -> Vec<f64> {
     let mut sum = vec![0.0; mesh.coords.len() * ncmp];
     let mut count = vec![0usize; mesh.coords.len()];
     for (c, v) in cells.iter().enumerate() {

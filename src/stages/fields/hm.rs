@@ -12,7 +12,6 @@ use crate::diag::Result;
 use crate::fem::elasticity::gauss_to_node_matrix;
 use crate::fem::quadrature::{QuadratureRule, RefDomain};
 use crate::hm::element::{CellPoints, Variant};
-use crate::mesh::Mesh;
 use crate::stages::core::hm::{hm_problem, HmProblem};
 
 /// The options CALC_CHAMP computes on HM results.
@@ -79,27 +78,6 @@ fn to_nodes(cp: &CellPoints, v: &[f64], ncmp: usize, split: Option<usize>) -> Ve
     out
 }
 
-/// Average ELNO values at the nodes over the cells that carry them.
-fn average(mesh: &Mesh, cells: &[Option<Vec<f64>>], ncmp: usize) -> Vec<f64> {
-    let mut sum = vec![0.0; mesh.nnodes() * ncmp];
-    let mut count = vec![0usize; mesh.nnodes()];
-    for (c, v) in cells.iter().enumerate() {
-        let Some(v) = v else { continue };
-        for (i, &n) in mesh.cells[c].iter().enumerate() {
-            count[n] += 1;
-            for k in 0..ncmp {
-                sum[n * ncmp + k] += v[i * ncmp + k];
-            }
-        }
-    }
-    for n in 0..count.len() {
-        for k in 0..ncmp {
-            sum[n * ncmp + k] = if count[n] > 0 { sum[n * ncmp + k] / count[n] as f64 } else { f64::NAN };
-        }
-    }
-    sum
-}
-
 /// Principal values (ascending) of a symmetric tensor given as [xx, yy, zz, xy, xz, yz].
 fn principal(s: &[f64; 6]) -> [f64; 3] {
     let m = nalgebra::Matrix3::new(s[0], s[3], s[4], s[3], s[1], s[5], s[4], s[5], s[2]);
@@ -147,23 +125,25 @@ pub fn calc_champ_hm(
             let f = match o.as_str() {
                 "SIGM_ELGA" => Field::Elga { components: sigma_names.clone(), cells: fields.sigm_elga.clone() },
                 "SIGM_ELNO" => Field::Elno { components: sigma_names.clone(), cells: fields.sigm_elno.clone() },
-                "SIGM_NOEU" => {
-                    Field::Node { components: sigma_names.clone(), values: average(&p.mesh, &fields.sigm_elno, ns) }
-                }
+                "SIGM_NOEU" => Field::Node {
+                    components: sigma_names.clone(),
+                    values: super::calc_champ::to_nodes(&p.mesh, &fields.sigm_elno, ns),
+                },
                 "SIEF_ELNO" => Field::Elno { components: fields.sief_names.clone(), cells: fields.sief_elno.clone() },
                 "SIEF_NOEU" => Field::Node {
                     components: fields.sief_names.clone(),
-                    values: average(&p.mesh, &fields.sief_elno, fields.sief_names.len()),
+                    values: super::calc_champ::to_nodes(&p.mesh, &fields.sief_elno, fields.sief_names.len()),
                 },
                 "EPSI_ELGA" => Field::Elga { components: eps_names.clone(), cells: fields.epsi_elga.clone() },
                 "EPSI_ELNO" => Field::Elno { components: eps_names.clone(), cells: fields.epsi_elno.clone() },
-                "EPSI_NOEU" => {
-                    Field::Node { components: eps_names.clone(), values: average(&p.mesh, &fields.epsi_elno, ns) }
-                }
+                "EPSI_NOEU" => Field::Node {
+                    components: eps_names.clone(),
+                    values: super::calc_champ::to_nodes(&p.mesh, &fields.epsi_elno, ns),
+                },
                 "VARI_ELNO" => Field::Elno { components: fields.vari_names.clone(), cells: fields.vari_elno.clone() },
                 "VARI_NOEU" => Field::Node {
                     components: fields.vari_names.clone(),
-                    values: average(&p.mesh, &fields.vari_elno, fields.vari_names.len()),
+                    values: super::calc_champ::to_nodes(&p.mesh, &fields.vari_elno, fields.vari_names.len()),
                 },
                 "SIEQ_ELGA" | "SIEQ_ELNO" | "SIEQ_NOEU" => {
                     let src = if o == "SIEQ_ELGA" { &fields.sigm_elga } else { &fields.sigm_elno };
@@ -178,7 +158,7 @@ pub fn calc_champ_hm(
                     match o.as_str() {
                         "SIEQ_ELGA" => Field::Elga { components: names, cells },
                         "SIEQ_ELNO" => Field::Elno { components: names, cells },
-                        _ => Field::Node { components: names, values: average(&p.mesh, &cells, n) },
+                        _ => Field::Node { components: names, values: super::calc_champ::to_nodes(&p.mesh, &cells, n) },
                     }
                 }
                 _ => {
@@ -202,7 +182,10 @@ pub fn calc_champ_hm(
                     match o.as_str() {
                         "EPEQ_ELGA" => Field::Elga { components: names, cells },
                         "EPEQ_ELNO" => Field::Elno { components: names, cells },
-                        _ => Field::Node { components: names, values: average(&p.mesh, &cells, EPEQ_COMPONENTS.len()) },
+                        _ => Field::Node {
+                            components: names,
+                            values: super::calc_champ::to_nodes(&p.mesh, &cells, EPEQ_COMPONENTS.len()),
+                        },
                     }
                 }
             };

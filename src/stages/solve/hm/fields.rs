@@ -111,15 +111,7 @@ pub fn initial_state(a: &Args, p: &HmProblem) -> Result<(Vec<f64>, Vec<Vec<Point
             let Some(vals) = cell_values(&fd.field, cell_id, st.len()).map_err(|m| e.err("SIGM", m))? else {
                 continue;
             };
-            let comps = fd.field.components();
-            let get = |pt: usize, name: &str| -> f64 {
-                comps
-                    .iter()
-                    .position(|x| x == name)
-                    .map(|j| vals[pt * comps.len() + j])
-                    .filter(|v| v.is_finite())
-                    .unwrap_or(0.0)
-            };
+            let get = point_reader(fd.field.components(), &vals);
             for (k, ps) in st.iter_mut().enumerate() {
                 for i in 0..6 {
                     ps.sig[i] = get(k, &sief[i]);
@@ -138,15 +130,7 @@ pub fn initial_state(a: &Args, p: &HmProblem) -> Result<(Vec<f64>, Vec<Vec<Point
             let Some(vals) = cell_values(&fd.field, cell_id, st.len()).map_err(|m| e.err("VARI", m))? else {
                 continue;
             };
-            let comps = fd.field.components();
-            let get = |pt: usize, name: &str| -> f64 {
-                comps
-                    .iter()
-                    .position(|x| x == name)
-                    .map(|j| vals[pt * comps.len() + j])
-                    .filter(|v| v.is_finite())
-                    .unwrap_or(0.0)
-            };
+            let get = point_reader(fd.field.components(), &vals);
             for (k, ps) in st.iter_mut().enumerate() {
                 ps.rho = cell.mat.rho_l + get(k, "V2");
                 ps.phi = cell.mat.phi0 + get(k, "V3");
@@ -171,5 +155,17 @@ fn cell_values(f: &Field, c: usize, npts: usize) -> std::result::Result<Option<V
         },
         Field::Elem { cells, .. } => Ok(cells.get(c).and_then(|v| v.as_ref()).map(|v| v.repeat(npts))),
         _ => Err("a field of points (ELGA) is needed".to_string()),
+    }
+}
+
+/// The value of a named component at a point of a cell's ELGA values (0 where absent or not finite).
+fn point_reader<'a>(comps: &'a [String], vals: &'a [f64]) -> impl Fn(usize, &str) -> f64 + 'a {
+    move |pt, name| {
+        comps
+            .iter()
+            .position(|x| x == name)
+            .map(|j| vals[pt * comps.len() + j])
+            .filter(|v| v.is_finite())
+            .unwrap_or(0.0)
     }
 }
