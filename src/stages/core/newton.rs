@@ -286,8 +286,9 @@ impl Archive {
         self.instants.iter().any(|&k| (k - t).abs() <= 1e-12 * t.abs().max(1e-300))
     }
 
-    /// The stored steps of a computation that stored every instant (the initial state first when
-    /// `initial`): renumbered from 0 (or 1), CHAM_EXCLU's fields removed but at the last.
+    /// The stored steps of a computation (the initial state first when `initial`; instants it does not
+    /// keep are left out if a driver stored them): renumbered from 0 (or 1), CHAM_EXCLU's fields removed
+    /// but at the last.
     pub fn select(
         &self,
         steps: Vec<crate::concepts::result::Step>,

@@ -68,7 +68,9 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         u = map.expand(&x);
         let (ts, rs) = (crate::text::sci(t, 6, false), crate::text::sci(residual, 3, false));
         log.push_str(&format!("  {n:>4}  {ts:>14}  {iters:>5}  {rs:>14}\n"));
-        steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(&p, &u, true)? });
+        if archive.keeps(t) {
+            steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(&p, &u, true)? });
+        }
     }
     let note = newton_note(a).map(|n| n + "\n").unwrap_or_default();
     ctx.io.mess(&format!(

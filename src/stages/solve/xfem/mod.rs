@@ -67,7 +67,7 @@ fn solve_xfem(
     let el = assemble::elements(a, &s, &fixed)?;
     // ARCHIVAGE (STAT_NON_LINE): the instants and fields stored.
     let archive = if statics { None } else { Some(crate::stages::core::newton::Archive::from_args(a, &times)?) };
-    let mut run = step::run(a, model, &s, &el, &times, statics)?;
+    let mut run = step::run(a, model, &s, &el, &times, statics, archive.as_ref())?;
     if let Some(archive) = archive {
         run.steps = archive.select(std::mem::take(&mut run.steps), true);
     }

@@ -11,7 +11,7 @@ use crate::diag::{Error, Result};
 use crate::fem::assembly::{Assembler, ElementDofs, SparsityPattern};
 use crate::fem::dofs::DofMap;
 use crate::solve::{self, Analysis};
-use crate::stages::core::newton::{inf_norm, newton, Converged, NewtonStep};
+use crate::stages::core::newton::{inf_norm, newton, Archive, Converged, NewtonStep};
 use crate::stages::core::solver::{solve_error, solver_log};
 use crate::xfem::czm::{self, CzmState};
 use std::fmt::Write as _;
@@ -36,8 +36,17 @@ pub struct Run {
     pub solver: String,
 }
 
-/// Solve every instant after the first (the initial state, stored as order 0 unless `statics`).
-pub fn run(a: &Args, model: &ConceptRef, s: &Setup, el: &Elements, times: &[f64], statics: bool) -> Result<Run> {
+/// Solve every instant after the first (the initial state, stored as order 0 unless `statics`); the
+/// fields are computed only at the instants `archive` keeps (all without one).
+pub fn run(
+    a: &Args,
+    model: &ConceptRef,
+    s: &Setup,
+    el: &Elements,
+    times: &[f64],
+    statics: bool,
+    archive: Option<&Archive>,
+) -> Result<Run> {
     let (xd, ndim) = (&s.xd, s.ndim());
     let mut states: Vec<CzmState> = vec![CzmState::default(); el.laws.len()];
     let mut x = vec![0.0; xd.n];
@@ -134,7 +143,9 @@ pub fn run(a: &Args, model: &ConceptRef, s: &Setup, el: &Elements, times: &[f64]
             crate::text::sci(abs, 3, false)
         );
         run.log.push_str(&zone_state(s, el, &states, &x));
-        run.steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(a, s, &x)? });
+        if archive.is_none_or(|ar| ar.keeps(t)) {
+            run.steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(a, s, &x)? });
+        }
     }
     Ok(run)
 }
