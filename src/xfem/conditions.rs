@@ -85,7 +85,8 @@ pub fn trace_sets(
                 }
                 0.0
             } else {
-                (fc - alpha * fk) / (2.0 * (1.0 - alpha)) - fn_ / 2.0
+                // The value the field takes with ψ = 2, turned to the node's ψ (−2 on some nodes).
+                ((fc - alpha * fk) / (2.0 * (1.0 - alpha)) - fn_ / 2.0) * 2.0 / xm.psi(n, j, region)
             };
             if done[j] && (out[j].1 - h).abs() > 1e-9 * h.abs().max(out[j].1.abs()).max(1e-300) {
                 return Err(format!("two edges ask different Heaviside values ({} and {h}) for one set", out[j].1));

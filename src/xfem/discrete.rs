@@ -252,6 +252,54 @@ pub fn body_force(
     Ok(fe)
 }
 
+/// The nodal forces of a known pore pressure acting on the skeleton through the Biot coefficient `b`
+/// (saturated HM with every hydraulic unknown prescribed): the stress σ_p = −b p 1 of the mixture moved
+/// to the right-hand side, ∫ Bᵀ (b p 1), in [`XDofs::cell_dofs`] order. The pressure is interpolated as
+/// the X-FEM HM elements do (`xcabhm`): with the functions N̂ of the cell's vertices,
+/// p = Σ_v N̂_v (p_v + Σ_j ψ_vj h_vj), enriched with the displacement's Heaviside functions ψ;
+/// `pre1[v]` and `hpre1[v][j]` are the values at the cell's `v`-th vertex.
+#[allow(clippy::too_many_arguments)]
+pub fn pore_pressure_force(
+    t: CellType,
+    coords: &[[f64; 3]],
+    nodes: &[usize],
+    xm: &XfemModel,
+    cell: usize,
+    ndim: usize,
+    b: f64,
+    pre1: &[f64],
+    hpre1: &[Vec<f64>],
+) -> Result<Vec<f64>, String> {
+    let cols = cell_columns(nodes, xm, ndim);
+    let mut fe = vec![0.0; cols.len()];
+    let tv = crate::fem::elasticity::vertex_type(t);
+    let nv = tv.nnodes();
+    for p in cell_points(t, coords, xm, cell)? {
+        let (_, g, _) = real_gradients(t, coords, &p.xi).ok_or("degenerate cell")?;
+        let nh = shape(tv, &p.xi);
+        let mut pv = 0.0;
+        for v in 0..nv {
+            let mut pv_v = pre1[v];
+            for (j, h) in hpre1[v].iter().enumerate() {
+                pv_v += xm.psi(nodes[v], j, p.region) * h;
+            }
+            pv += nh[v] * pv_v;
+        }
+        if pv == 0.0 {
+            continue;
+        }
+        for (r, &(a, set, i)) in cols.iter().enumerate() {
+            let psi = match set {
+                None => 1.0,
+                Some(j) => xm.psi(nodes[a], j, p.region),
+            };
+            // The normal strains of a unit displacement along i: ε_ii = ∂N_a/∂x_i.
+            fe[r] += p.w * psi * g[a][i] * b * pv;
+        }
+    }
+    Ok(fe)
+}
+
 /// Stiffness matrix of a cell on its unknowns ([`XDofs::cell_dofs`] order),
 /// row-major; `hooke` on engineering strains of `nsig` components.
 #[allow(clippy::too_many_arguments)]

@@ -272,16 +272,20 @@ impl XfemModel {
             }
             let own = node_signs(&lsn_refs, &masters, n);
             let own_code = node_region[n];
+            // The sets in the order the regions are first met, cell after cell and sub-cell after sub-cell
+            // (`te0120` lists a cell's regions so, `xcelno` appends them per node over the cells): the
+            // order Code_Aster numbers H1*, H2*, … in.
             let mut others: Vec<(usize, i32)> = around[n]
                 .iter()
                 .filter(|(_, r)| *r != own_code)
                 .map(|(s, r)| (s.iter().zip(&own).position(|(a, b)| a != b).unwrap_or(usize::MAX), *r))
                 .collect();
-            others.sort();
             if others.len() == around[n].len() {
                 // The node's own region is not in its support (it lies on an
-                // interface): one region stands for the standard unknown.
-                others.remove(0);
+                // interface): one region stands for the standard unknown, the
+                // first to differ from the node's signs on the first crack.
+                let first = others.iter().enumerate().min_by_key(|(_, o)| **o).map(|(k, _)| k).unwrap_or(0);
+                others.remove(first);
             }
             if !others.is_empty() && !enriched.iter().any(|e| e[n]) {
                 return Err(format!(
@@ -439,13 +443,27 @@ impl XfemModel {
         }
     }
 
-    /// ψ of node `n`'s set `j` in region `r`.
+    /// ψ of node `n`'s set `j` in region `r` (`xcalc_heav`): 2 in the set's region, 0 elsewhere, except
+    /// for a node with a single set on the + side of the crack that separates it from the set's region,
+    /// where it is −2 (`xcelno`'s flag for mono-Heaviside nodes: the jump u⁺ − u⁻ is then 2h on both
+    /// sides). The sign matters only where a Heaviside unknown is given a value (DDL_IMPO H1PRE1, …).
     pub fn psi(&self, n: usize, j: usize, r: i32) -> f64 {
-        if self.node_sets[n][j] == r {
-            2.0
-        } else {
+        if self.node_sets[n][j] != r {
             0.0
+        } else if self.node_sets[n].len() == 1 && self.own_plus_side(n, r) {
+            -2.0
+        } else {
+            2.0
         }
+    }
+
+    /// Is node `n` on the + side of the first crack on which its own region and region `r` differ?
+    fn own_plus_side(&self, n: usize, r: i32) -> bool {
+        // Region codes hold one base-4 digit h + 2 per crack, the first crack most significant.
+        let nc = self.lsn.len() as u32;
+        let digit = |code: i32, g: u32| (code / 4i32.pow(nc - 1 - g)) % 4;
+        let own = self.node_region[n];
+        (0..nc).find(|&g| digit(own, g) != digit(r, g)).is_some_and(|g| digit(own, g) == 3)
     }
 
     /// Number of enrichment sets over all nodes.

@@ -551,7 +551,21 @@ fn xfem_value(
         let vt = crate::fem::elasticity::vertex_type(t);
         let lin = crate::fem::reference::shape(vt, xi);
         let k = idx("PRE1").unwrap();
-        row[ndim] = nodes.iter().zip(&lin).map(|(&n, f)| f * values[n * nc + k]).sum();
+        // With its Heaviside parts when the result has them (a prescribed enriched pressure).
+        row[ndim] = nodes
+            .iter()
+            .zip(&lin)
+            .map(|(&n, f)| {
+                let mut p = values[n * nc + k];
+                for j in 0..xm.node_sets[n].len() {
+                    let psi = xm.psi(n, j, region);
+                    if let Some(kh) = idx(&format!("H{}PRE1", j + 1)).filter(|_| psi != 0.0) {
+                        p += psi * values[n * nc + kh];
+                    }
+                }
+                f * p
+            })
+            .sum();
     }
 }
 

@@ -51,10 +51,30 @@ fn direction(c: &str) -> Option<usize> {
     }
 }
 
+/// What the loads prescribe at an instant.
+pub struct Conditions {
+    pub cons: Constraints,
+    /// The report on the hydraulic unknowns (HM models), for the log.
+    pub report: String,
+    /// The rigid translations pinned when NPREC < 0, for the log.
+    pub pins: Vec<String>,
+    /// The prescribed pore pressure when it is not zero everywhere (HM models).
+    pub pressure: Option<PorePressure>,
+}
+
+/// A pore pressure prescribed on every hydraulic unknown of an HM model: `pre1[n]` at each vertex `n`
+/// (0 elsewhere), `hpre1[n][j]` the Heaviside part of node `n`'s enrichment set `j` (`H<j+1>PRE1`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PorePressure {
+    pub pre1: Vec<f64>,
+    pub hpre1: Vec<Vec<f64>>,
+}
+
 /// The kinematic conditions of the loads at `t`, the report on the
-/// hydraulic unknowns (HM models: all must be prescribed to zero), and the
-/// rigid translations pinned when NPREC < 0.
-pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<(Constraints, String, Vec<String>)> {
+/// hydraulic unknowns (HM models: all must be prescribed; the pore pressure
+/// they give acts on the skeleton), and the rigid translations pinned when
+/// NPREC < 0.
+pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Conditions> {
     let (mesh, xm, xd, ndim) = (&*s.mesh, &*s.xm, &s.xd, s.ndim());
     let mut cons = Constraints::new();
     let mut hydraulic: BTreeMap<(usize, String), f64> = BTreeMap::new();
@@ -156,7 +176,7 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<(C
                             let std_i = xd.std[i].expect("node of a model cell");
                             terms.push((std_i + d, p.ff[k]));
                             if let Some(jj) = xm.node_sets[i].iter().position(|&r| r == p.region) {
-                                terms.push((xd.sets[i][jj] + d, 2.0 * p.ff[k]));
+                                terms.push((xd.sets[i][jj] + d, xm.psi(i, jj, p.region) * p.ff[k]));
                             }
                         }
                         cons.relation(terms, mult * p.value);
@@ -175,7 +195,7 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<(C
             }
         }
     }
-    let mut report = if s.hm { hydraulic_report(a, s, &hydraulic)? } else { String::new() };
+    let (mut report, pressure) = if s.hm { hydraulic_report(a, s, &hydraulic)? } else { (String::new(), None) };
     if !flux_loads.is_empty() {
         let _ = writeln!(
             report,
@@ -184,20 +204,26 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<(C
         );
     }
     let pins = pin_translations(s, &mut cons, &blocked_dir);
-    Ok((cons, report, pins))
+    Ok(Conditions { cons, report, pins, pressure })
 }
 
-/// The report on the hydraulic unknowns of an HM model: every one must be prescribed to zero to be
-/// eliminated (PRE1 on the vertices, H*PRE1 on the enrichment sets, p_f/q⁺/q⁻ on the packets).
-fn hydraulic_report(a: &Args, s: &Setup, hydraulic: &BTreeMap<(usize, String), f64>) -> Result<String> {
+/// The report on the hydraulic unknowns of an HM model, and the pore pressure they prescribe when it is
+/// not zero: every one must be prescribed to be eliminated (PRE1 on the vertices, H*PRE1 on the
+/// enrichment sets, p_f/q⁺/q⁻ on the packets, these to zero).
+fn hydraulic_report(
+    a: &Args,
+    s: &Setup,
+    hydraulic: &BTreeMap<(usize, String), f64>,
+) -> Result<(String, Option<PorePressure>)> {
     let (mesh, xm, xd, ndim, zones) = (&*s.mesh, &*s.xm, &s.xd, s.ndim(), &s.zones);
     let mut report = String::new();
-    if let Some(((n, c), v)) = hydraulic.iter().find(|(_, v)| **v != 0.0) {
+    let bulk = |c: &str| c == "PRE1" || (c.starts_with('H') && c.ends_with("PRE1"));
+    if let Some(((n, c), v)) = hydraulic.iter().find(|((_, c), v)| **v != 0.0 && !bulk(c)) {
         return Err(a.err(
             "EXCIT",
             format!(
-                "{c} = {v} at node {}: a non-zero hydraulic condition needs coupled flow, which X-FEM {} \
-                 elements do not support yet",
+                "{c} = {v} at node {}: a non-zero fracture pressure or exchange flux needs the flow in the \
+                 interface, which X-FEM {} elements do not support yet",
                 mesh.node_names[*n],
                 if ndim == 2 { "D_PLAN_HM" } else { "3D_HM" }
             ),
@@ -209,7 +235,7 @@ fn hydraulic_report(a: &Args, s: &Setup, hydraulic: &BTreeMap<(usize, String), f
             "EXCIT",
             format!(
                 "{what} is not prescribed: coupled hydraulics in X-FEM elements is not supported yet \
-                 (the hydraulic unknowns are eliminated only when all are prescribed to zero)"
+                 (the hydraulic unknowns are eliminated only when all are prescribed)"
             ),
         )
     };
@@ -220,18 +246,21 @@ fn hydraulic_report(a: &Args, s: &Setup, hydraulic: &BTreeMap<(usize, String), f
         }
     }
     let mut n_h = 0;
+    let mut pressure = PorePressure {
+        pre1: vec![0.0; mesh.nnodes()],
+        hpre1: xd.sets.iter().map(|sets| vec![0.0; sets.len()]).collect(),
+    };
+    let value = |n: usize, c: &str| hydraulic.get(&(n, c.to_string())).copied();
     for &n in &vertices {
-        if !fixed(n, "PRE1") {
-            return Err(free_msg(format!("PRE1 at node {}", mesh.node_names[n])));
-        }
+        pressure.pre1[n] = value(n, "PRE1").ok_or_else(|| free_msg(format!("PRE1 at node {}", mesh.node_names[n])))?;
         for j in 0..xd.sets[n].len() {
             let c = format!("H{}PRE1", j + 1);
-            if !fixed(n, &c) {
-                return Err(free_msg(format!("{c} at node {}", mesh.node_names[n])));
-            }
+            pressure.hpre1[n][j] =
+                value(n, &c).ok_or_else(|| free_msg(format!("{c} at node {}", mesh.node_names[n])))?;
             n_h += 1;
         }
     }
+    let zero = pressure.pre1.iter().chain(pressure.hpre1.iter().flatten()).all(|v| *v == 0.0);
     // Fracture unknowns: one block per crack a node's packets belong to.
     let mut n_pk = 0;
     for z in zones {
@@ -256,14 +285,25 @@ fn hydraulic_report(a: &Args, s: &Setup, hydraulic: &BTreeMap<(usize, String), f
             n_pk += 1;
         }
     }
+    if zero {
+        let _ = writeln!(
+            report,
+            "    eliminated: hydraulics — PRE1 on {} vertices, H*PRE1 on {n_h} enrichment sets, fracture p_f/q+/q- on {n_pk} \
+             packets, all prescribed to 0 by the loads; with p = p_f = 0 the Biot term b·p and the fracture pressure in the \
+             interface vanish, so THM_INIT, THM_DIFFU, THM_LIQU, SCHEMA_THM and the time step play no part",
+            vertices.len()
+        );
+        return Ok((report, None));
+    }
     let _ = writeln!(
         report,
-        "    eliminated: hydraulics — PRE1 on {} vertices, H*PRE1 on {n_h} enrichment sets, fracture p_f/q+/q- on {n_pk} packets, \
-         all prescribed to 0 by the loads; with p = p_f = 0 the Biot term b·p and the fracture pressure in the interface \
-         vanish, so THM_INIT, THM_DIFFU, THM_LIQU, SCHEMA_THM and the time step play no part",
+        "    eliminated: hydraulics — PRE1 on {} vertices, H*PRE1 on {n_h} enrichment sets, fracture p_f/q+/q- on {n_pk} \
+         packets, all prescribed by the loads; the prescribed pore pressure (Heaviside-enriched, with the vertex \
+         functions) loads the skeleton through the Biot term −b·p (THM_DIFFU BIOT_COEF); the flow equations are not \
+         solved, so THM_INIT, THM_LIQU, the permeability, SCHEMA_THM and the time step play no part",
         vertices.len()
     );
-    Ok(report)
+    Ok((report, Some(pressure)))
 }
 
 /// Rigid translations with no condition at all, pinned when NPREC < 0 (as a singular-tolerant direct

@@ -3,6 +3,7 @@
 //! sub-cells (`xfem::discrete::body_force`), ρ being ELAS RHO, or THM_DIFFU RHO (the mixture's) on a
 //! hydro-mechanical model.
 
+use super::conditions::PorePressure;
 use super::setup::Setup;
 use crate::catalog::args::Args;
 use crate::concepts::model::{LoadItem, LoadValue};
@@ -13,10 +14,14 @@ use crate::stages::core::eval::eval_at;
 use crate::stages::core::problem::mat_param;
 use crate::xfem::discrete;
 
-/// The external force vector at `t` (all unknowns), and whether any load gives one.
-pub fn external(a: &Args, s: &Setup, t: f64) -> Result<Option<Vec<f64>>> {
+/// The external force vector at `t` (all unknowns), and whether any load gives one; `pressure`, the pore
+/// pressure the loads prescribe on an HM model, acts through the Biot term ([`biot`]).
+pub fn external(a: &Args, s: &Setup, t: f64, pressure: Option<&PorePressure>) -> Result<Option<Vec<f64>>> {
     let (mesh, xm, xd, ndim) = (&*s.mesh, &*s.xm, &s.xd, s.ndim());
     let mut f: Option<Vec<f64>> = None;
+    if let Some(p) = pressure {
+        biot(a, s, p, f.get_or_insert_with(|| vec![0.0; xd.n]))?;
+    }
     let lonref = {
         let (lo, hi) = mesh.bounding_box().unwrap_or(([0.0; 3], [1.0; 3]));
         (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
@@ -38,7 +43,6 @@ pub fn external(a: &Args, s: &Setup, t: f64) -> Result<Option<Vec<f64>>> {
             });
             let order = if quadratic { 4 } else { 2 };
             let rule = discrete::facet_rule(ndim, order).map_err(|e| a.err("EXCIT", e))?;
-            let facets = discrete::facets(mesh, xm, *crack, 1e-9 * lonref);
             let p = |x: &[f64; 3]| -> std::result::Result<f64, String> {
                 Ok(mult
                     * match value {
@@ -46,12 +50,31 @@ pub fn external(a: &Args, s: &Setup, t: f64) -> Result<Option<Vec<f64>>> {
                         LoadValue::Func(g) => eval_at(g, x, t).map_err(|e| e.msg)?,
                     })
             };
-            let cells = discrete::lip_pressure(mesh, xm, *crack, &facets, &rule, ndim, &p)
-                .map_err(|e| a.err("EXCIT", format!("load {}: PRES_REP on the lips of {name}: {e}", lc.label())))?;
-            let fv = f.get_or_insert_with(|| vec![0.0; xd.n]);
-            for (c, fe) in cells {
-                for (d, v) in xd.cell_dofs(&mesh.cells[c]).into_iter().zip(fe) {
-                    fv[d] += v;
+            // Code_Aster loads the cells of the crack's enriched-cell lists (`xtmafi`: MAILFISS.HEAV, …, the
+            // cells with a node it enriches), and in each of them the lips of every interface the cell sees
+            // (`te0037` loops over the cell's cracks): a branch of a junction is loaded where it crosses
+            // those cells.
+            let loaded: std::collections::BTreeSet<usize> = xm.cracks[*crack].heaviside_cells.iter().copied().collect();
+            for g in 0..xm.cracks.len() {
+                let facets: Vec<discrete::Facet> = discrete::facets(mesh, xm, g, 1e-9 * lonref)
+                    .into_iter()
+                    .filter(|fc| loaded.contains(&fc.cell))
+                    .collect();
+                let cells = discrete::lip_pressure(mesh, xm, g, &facets, &rule, ndim, &p).map_err(|e| {
+                    a.err(
+                        "EXCIT",
+                        format!(
+                            "load {}: PRES_REP on the lips of {} ({name}'s cells): {e}",
+                            lc.label(),
+                            xm.crack_names[g]
+                        ),
+                    )
+                })?;
+                let fv = f.get_or_insert_with(|| vec![0.0; xd.n]);
+                for (c, fe) in cells {
+                    for (d, v) in xd.cell_dofs(&mesh.cells[c]).into_iter().zip(fe) {
+                        fv[d] += v;
+                    }
                 }
             }
         }
@@ -77,6 +100,35 @@ fn gravity(a: &Args, s: &Setup, g: f64, direction: &[f64; 3], cells: Option<&[us
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
         let fe = discrete::body_force(mesh.cell_types[c], &coords, nodes, xm, c, ndim, &acc)
             .map_err(|e| a.err("EXCIT", format!("PESANTEUR on cell {name}: {e}")))?;
+        for (d, v) in xd.cell_dofs(nodes).into_iter().zip(fe) {
+            f[d] += v;
+        }
+    }
+    Ok(())
+}
+
+/// A prescribed pore pressure on the skeleton: the stress −b·p of the mixture moved to the right-hand
+/// side on every model cell (`discrete::pore_pressure_force`), b being THM_DIFFU BIOT_COEF. The stress
+/// of the pressure is incremental in Code_Aster; the initial state here has p = 0.
+fn biot(a: &Args, s: &Setup, p: &PorePressure, f: &mut [f64]) -> Result<()> {
+    let (mesh, xm, xd, ndim) = (&*s.mesh, &*s.xm, &s.xd, s.ndim());
+    for &c in &s.model_cells {
+        let name = &mesh.cell_names[c];
+        let nodes = &mesh.cells[c];
+        let t = mesh.cell_types[c];
+        let nv = t.nvertices();
+        if nodes[..nv].iter().all(|&n| p.pre1[n] == 0.0 && p.hpre1[n].iter().all(|v| *v == 0.0)) {
+            continue;
+        }
+        let m = s.material(a, c)?;
+        let b = mat_param(&m, "THM_DIFFU", "BIOT_COEF", name).map_err(|e| e.at(a.span))?.ok_or_else(|| {
+            a.err("CHAM_MATER", format!("cell {name}: a prescribed pore pressure needs THM_DIFFU/BIOT_COEF"))
+        })?;
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let pre1: Vec<f64> = nodes[..nv].iter().map(|&n| p.pre1[n]).collect();
+        let hpre1: Vec<Vec<f64>> = nodes[..nv].iter().map(|&n| p.hpre1[n].clone()).collect();
+        let fe = discrete::pore_pressure_force(t, &coords, nodes, xm, c, ndim, b, &pre1, &hpre1)
+            .map_err(|e| a.err("EXCIT", format!("pore pressure on cell {name}: {e}")))?;
         for (d, v) in xd.cell_dofs(nodes).into_iter().zip(fe) {
             f[d] += v;
         }

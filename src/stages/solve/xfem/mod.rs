@@ -4,12 +4,13 @@
 //!
 //! Only the effects the scene calls for are simulated. Hydro-mechanical
 //! models (D_PLAN_HM, 3D_HM) are accepted when every hydraulic unknown is
-//! prescribed to zero: the pressures, their Heaviside parts and the fracture
-//! unknowns (p_f, q⁺, q⁻ of every multiplier packet) are then eliminated,
-//! with the coupling terms they carry (b·p in the bulk, p_f in the interface
-//! equations), and the run log says so; a scene that needs coupled flow
-//! stops with a message. Interfaces without a contact zone carry no
-//! unknowns (free surfaces).
+//! prescribed: the pressures and their Heaviside parts (any values) and the
+//! fracture unknowns (p_f, q⁺, q⁻ of every multiplier packet, to zero) are
+//! then eliminated; a prescribed pore pressure loads the skeleton through
+//! the Biot term −b·p (`forces`), p_f = 0 leaves the interface equations
+//! alone, and the run log says so; a scene that needs coupled flow stops
+//! with a message. Interfaces without a contact zone carry no unknowns
+//! (free surfaces).
 
 mod assemble;
 mod conditions;
@@ -62,7 +63,7 @@ fn solve_xfem(
     // The unknowns the kinematic conditions prescribe, at the first instant solved: multiplier components
     // that test only prescribed jumps are removed (`discrete::dead_components`).
     let t_first = times.get(1).or(times.last()).copied().unwrap_or(0.0);
-    let (cons, _, _) = conditions::constraints(a, model, &s, t_first)?;
+    let cons = conditions::constraints(a, model, &s, t_first)?.cons;
     let fixed: std::collections::BTreeSet<usize> = cons.imposed.iter().map(|&(d, _)| d).collect();
     let el = assemble::elements(a, &s, &fixed)?;
     // ARCHIVAGE (STAT_NON_LINE): the instants and fields stored.

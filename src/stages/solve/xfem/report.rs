@@ -3,6 +3,7 @@
 //! unknowns, and the DEPL field on the mesh nodes.
 
 use super::assemble::Elements;
+use super::conditions::PorePressure;
 use super::setup::Setup;
 use super::step::Run;
 use crate::concepts::result::Field;
@@ -154,8 +155,9 @@ pub fn label(s: &Setup, d: usize) -> String {
 }
 
 /// DEPL of an X-FEM solution on the mesh nodes: DX DY (DZ), PRE1 for HM
-/// models (zero at vertices: eliminated), then H<j><X|Y|Z> per set.
-pub fn depl_fields(s: &Setup, x: &[f64]) -> BTreeMap<String, Field> {
+/// models (on the vertices: the prescribed pressure, zero without one), then
+/// H<j><X|Y|Z> per set, then for HM models H<j>PRE1 per set (vertices).
+pub fn depl_fields(s: &Setup, x: &[f64], pressure: Option<&PorePressure>) -> BTreeMap<String, Field> {
     let (mesh, xm, xd, hm) = (&*s.mesh, &*s.xm, &s.xd, s.hm);
     let ndim = xd.ndim;
     let xyz = ["X", "Y", "Z"];
@@ -168,6 +170,11 @@ pub fn depl_fields(s: &Setup, x: &[f64]) -> BTreeMap<String, Field> {
         for d in xyz.iter().take(ndim) {
             comps.push(format!("H{}{d}", j + 1));
         }
+    }
+    // The Heaviside parts of the pressure (vertices of the enriched cells).
+    let hp = comps.len();
+    if hm {
+        comps.extend((0..maxsets).map(|j| format!("H{}PRE1", j + 1)));
     }
     let nc = comps.len();
     let mut values = vec![f64::NAN; mesh.nnodes() * nc];
@@ -186,7 +193,10 @@ pub fn depl_fields(s: &Setup, x: &[f64]) -> BTreeMap<String, Field> {
         let mut k = ndim;
         if hm {
             if vertex[n] {
-                row[k] = 0.0;
+                row[k] = pressure.map_or(0.0, |p| p.pre1[n]);
+                for j in 0..xd.sets[n].len() {
+                    row[hp + j] = pressure.map_or(0.0, |p| p.hpre1[n][j]);
+                }
             }
             k += 1;
         }

@@ -2,6 +2,7 @@
 //! Newton loop of the core on an `XfemStep`, then the update of the cohesive internal variables.
 
 use super::assemble::{Elements, Law, Lin, Zone};
+use super::conditions::PorePressure;
 use super::report::{depl_fields, label, sief_field, zone_state};
 use super::setup::Setup;
 use crate::catalog::args::Args;
@@ -52,7 +53,7 @@ pub fn run(
     let mut x = vec![0.0; xd.n];
     let mut run = Run::default();
     if !statics {
-        run.steps.push(Step { nume_ordre: 0, inst: times[0], fields: step_fields(a, s, &x)? });
+        run.steps.push(Step { nume_ordre: 0, inst: times[0], fields: step_fields(a, s, &x, None)? });
     }
     // Largest reference force of the converged steps: the scale of the
     // relative criterion once the forces vanish (a fully broken interface).
@@ -60,7 +61,8 @@ pub fn run(
     // The symbolic analysis, reused across Newton iterations and instants while the pattern holds.
     let mut analysis: Option<Analysis> = None;
     for (n, &t) in times.iter().enumerate().skip(1) {
-        let (mut cons, hydr, pins) = super::conditions::constraints(a, model, s, t)?;
+        let super::conditions::Conditions { mut cons, report: hydr, pins, pressure } =
+            super::conditions::constraints(a, model, s, t)?;
         // Removed multiplier components: their λ, w and μ are zero.
         for (zi, dead) in el.dead.iter().enumerate() {
             let crack = s.zones[zi].crack;
@@ -76,7 +78,7 @@ pub fn run(
             run.pinned = pins;
         }
         let map = DofMap::build(xd.n, &cons).map_err(|e| a.err("EXCIT", e.to_string()))?;
-        let fext = super::forces::external(a, s, t)?;
+        let fext = super::forces::external(a, s, t, pressure.as_ref())?;
         run.nfree = map.nfree;
         // Start from the previous state with this step's imposed values.
         let free: Vec<f64> = map.free_to_full.iter().map(|&d| x[d]).collect();
@@ -144,7 +146,7 @@ pub fn run(
         );
         run.log.push_str(&zone_state(s, el, &states, &x));
         if archive.is_none_or(|ar| ar.keeps(t)) {
-            run.steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(a, s, &x)? });
+            run.steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(a, s, &x, pressure.as_ref())? });
         }
     }
     Ok(run)
@@ -156,8 +158,9 @@ fn step_fields(
     a: &Args,
     s: &Setup,
     x: &[f64],
+    pressure: Option<&PorePressure>,
 ) -> Result<std::collections::BTreeMap<String, crate::concepts::result::Field>> {
-    let mut f = depl_fields(s, x);
+    let mut f = depl_fields(s, x, pressure);
     if !s.hm && a.text_if_declared("OPTION") != Some("SANS") {
         f.insert("SIEF_ELGA".to_string(), sief_field(a, s, x)?);
     }
