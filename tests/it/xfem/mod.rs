@@ -5,6 +5,7 @@ mod cohesive;
 mod hard_cases;
 mod levelsets;
 mod mortar;
+mod pore_pressure;
 mod post_erreur;
 mod property;
 mod topose;
