@@ -7,6 +7,7 @@ mod levelsets;
 mod mortar;
 mod post_erreur;
 mod property;
+mod restart;
 mod topose;
 mod topose_boundary;
 mod topose_linear;
