@@ -137,7 +137,8 @@ impl Session {
         let line = self.line_of(span);
         let globals = self.globals.clone();
         let inject_panic = self.inject_panic.as_deref() == Some(name);
-        let mut ctx = Ctx { io: self, globals, command: name, line };
+        let reuse = validated.reuse.clone();
+        let mut ctx = Ctx { io: self, globals, command: name, line, reuse };
         args.reset_reads();
         take_undeclared_lookups();
         if inject_panic {

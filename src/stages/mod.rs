@@ -71,6 +71,9 @@ pub struct Ctx<'a> {
     /// The command's name and its line, for records.
     pub command: &'static str,
     pub line: usize,
+    /// The concept of `reuse=`, which the command's result replaces (a reentrant STAT_NON_LINE appends
+    /// to the steps it holds).
+    pub reuse: Option<crate::concepts::ConceptRef>,
 }
 
 pub type StageFn = fn(&mut Ctx, &Args) -> Result<Option<ConceptData>>;

@@ -9,6 +9,14 @@ use crate::diag::Result;
 /// The computation instants: the list, cut to INST_INIT / INST_FIN (or their
 /// NUME_INST_* forms). The first one is the initial state.
 pub fn instants(a: &Args) -> Result<Vec<f64>> {
+    instants_from(a, None)
+}
+
+/// The same, with `init` the instant of ETAT_INIT's state (EVOL_NOLI): when INCREMENT gives neither
+/// INST_INIT nor NUME_INST_INIT, the computation starts there, as Code_Aster's `nmdini`/`nmcrls` do: at
+/// the instant of the list within PRECISION times the smallest step of the list, else at the last
+/// instant before it, whose value becomes `init`.
+pub fn instants_from(a: &Args, init: Option<f64>) -> Result<Vec<f64>> {
     let inc = a.fact("INCREMENT").ok_or_else(|| a.err("INCREMENT", "INCREMENT is required"))?;
     let lc = inc.req_concept("LIST_INST")?;
     let list = match &*lc.data() {
@@ -37,9 +45,34 @@ pub fn instants(a: &Args) -> Result<Vec<f64>> {
             .position(|&x| (x - t).abs() <= prec * t.abs().max(1e-300) || x == t)
             .ok_or_else(|| inc.err(kw, format!("{t} is not an instant of {}", lc.label())))
     };
-    let first = match (inc.int("NUME_INST_INIT"), inc.real("INST_INIT")) {
-        (Some(n), _) => n as usize,
-        (None, Some(t)) => find(t, "INST_INIT")?,
+    // The list's instant that ETAT_INIT's one replaces, if it is not in the list.
+    let mut replaced: Option<(usize, f64)> = None;
+    let first = match (inc.int("NUME_INST_INIT"), inc.real("INST_INIT"), init) {
+        (Some(n), _, _) => n as usize,
+        (None, Some(t), _) => find(t, "INST_INIT")?,
+        (None, None, Some(t)) => {
+            let dtmin = list.windows(2).map(|w| w[1] - w[0]).fold(f64::INFINITY, f64::min);
+            let tol = if dtmin.is_finite() { prec * dtmin } else { 0.0 };
+            match list.iter().position(|&x| (x - t).abs() <= tol) {
+                Some(i) => i,
+                None => {
+                    // The last instant before `init` (the first one if none is), which `init` replaces.
+                    let i = list.iter().rposition(|&x| x < t).unwrap_or(0);
+                    if list.get(i + 1).is_some_and(|&next| t >= next) || (i + 1 == list.len()) {
+                        return Err(inc.err(
+                            "LIST_INST",
+                            format!(
+                                "the initial state of ETAT_INIT is at INST={t}, at or after the last instant \
+                                 to compute of {}",
+                                lc.label()
+                            ),
+                        ));
+                    }
+                    replaced = Some((i, t));
+                    i
+                }
+            }
+        }
         _ => 0,
     };
     let last = match (inc.int("NUME_INST_FIN"), inc.real("INST_FIN")) {
@@ -47,6 +80,10 @@ pub fn instants(a: &Args) -> Result<Vec<f64>> {
         (None, Some(t)) => find(t, "INST_FIN")?,
         _ => list.len() - 1,
     };
+    let mut list = list;
+    if let Some((i, t)) = replaced {
+        list[i] = t;
+    }
     if first >= last || last >= list.len() {
         return Err(inc.err("LIST_INST", format!("no step to compute between instants #{first} and #{last}")));
     }

@@ -233,21 +233,23 @@ fn plan_result(out: &mut MedOut, occ: &Args) -> Result<()> {
                     ),
                 ));
             }
+            // As Code_Aster's `ircmpn`: a node carrying any of the components is written with all of them,
+            // those it lacks as 0 (the simple field's initial value); a node with none would need a profile.
             let mut v = Vec::with_capacity(nn * picked.len());
             for i in 0..nn {
-                for (k, c) in &picked {
+                if !picked.iter().any(|(k, _)| values[i * nco + k].is_finite()) {
+                    return Err(occ.err(
+                        kw_cham,
+                        format!(
+                            "field {sym} of result {rname} at order {}: node {} has none of the components written; \
+                             node fields defined on part of the mesh (MED profiles) are not supported yet",
+                            st.nume_ordre, mesh.node_names[i]
+                        ),
+                    ));
+                }
+                for (k, _) in &picked {
                     let x = values[i * nco + k];
-                    if !x.is_finite() {
-                        return Err(occ.err(
-                            kw_cham,
-                            format!(
-                                "field {sym} of result {rname} at order {}: node {} has no value for {c}; node \
-                                 fields defined on part of the mesh (MED profiles) are not supported yet",
-                                st.nume_ordre, mesh.node_names[i]
-                            ),
-                        ));
-                    }
-                    v.push(x);
+                    v.push(if x.is_finite() { x } else { 0.0 });
                 }
             }
             let numdt = i32::try_from(st.nume_ordre)

@@ -3,6 +3,8 @@
 //! nodal level sets (`xinils`) adjusted near zero (`xajuls`), the junction
 //! coefficients (`xinlsj`), the node status and enriched cells (`xenrch`).
 
+mod lips;
+
 use crate::catalog::args::Args;
 use crate::concepts::model::Model;
 use crate::concepts::result::Field;
@@ -459,6 +461,13 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         if hm {
             out_comps.push("PRE1".into());
         }
+        // The interface unknowns on the lips (mortar interfaces), after the displacement and pressure.
+        let iface = lips::interface_components(components, ndim, hm);
+        let first_iface = out_comps.len();
+        if let Some(ic) = &iface {
+            out_comps.extend(ic.iter().map(|(n, _)| n.clone()));
+        }
+        let second_block = idx(["D1X", "PR2_FLU"][usize::from(hm)]);
         let no = out_comps.len();
         let mut out = vec![f64::NAN; vm.mesh.nnodes() * no];
         // A cell of each node (for the pressure at mid-side nodes).
@@ -483,9 +492,15 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                         row[ndim] = pressure_at_node(&mesh, cell_of[*n], values, nc, idx("PRE1").unwrap(), *n);
                     }
                 }
-                NodeOrigin::Xfem { parent, xi, he, .. } => {
+                NodeOrigin::Xfem { parent, xi, he, id } => {
                     let xc = &xm.cells[parent];
                     xfem_value(&mesh, &xm, *parent, xi, &xc.cracks, he, values, nc, hm, &idx, row);
+                    if let Some(ic) = &iface {
+                        let lip = lips::at_lip_node(&mesh, &xm, *parent, *id, xi, he, values, nc, ic, second_block);
+                        if let Some(v) = lip {
+                            row[first_iface..].copy_from_slice(&v);
+                        }
+                    }
                 }
                 NodeOrigin::Boundary { parent, he, bulk, bulk_xi, .. } => {
                     // The field of the bulk cell holding the boundary parent,

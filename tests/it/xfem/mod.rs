@@ -8,6 +8,7 @@ mod mortar;
 mod pore_pressure;
 mod post_erreur;
 mod property;
+mod restart;
 mod topose;
 mod topose_boundary;
 mod topose_linear;

@@ -18,6 +18,8 @@ pub struct Zone {
     pub packets: Vec<Vec<usize>>,
     pub packet_of: BTreeMap<usize, usize>,
     pub edges: BTreeSet<(usize, usize)>,
+    /// The contact cells of the crack (`MAILFISS.CONT`), which carry its cohesive variables (COHE_ELEM).
+    pub cells: Vec<usize>,
 }
 
 /// A linear element: unknowns and matrix (row-major).

@@ -3,7 +3,6 @@
 //! unknowns, and the DEPL field on the mesh nodes.
 
 use super::assemble::Elements;
-use super::conditions::PorePressure;
 use super::setup::Setup;
 use super::step::Run;
 use crate::concepts::result::Field;
@@ -11,7 +10,6 @@ use crate::concepts::ConceptRef;
 use crate::fem::elasticity::Modelisation;
 use crate::mesh::Mesh;
 use crate::xfem::czm::CzmState;
-use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -41,7 +39,15 @@ pub fn zone_state(su: &Setup, el: &Elements, states: &[CzmState], x: &[f64]) -> 
 }
 
 /// The run log of a solve: what was simulated, eliminated, and how.
-pub fn run_log(command: &str, model: &ConceptRef, su: &Setup, el: &Elements, run: &Run, t_start: Instant) -> String {
+pub fn run_log(
+    command: &str,
+    model: &ConceptRef,
+    su: &Setup,
+    el: &Elements,
+    run: &Run,
+    init: Option<&super::state::Source>,
+    t_start: Instant,
+) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "  {command} on X-FEM model {} ({}):", model.label(), su.modelisation);
     let _ = writeln!(
@@ -72,6 +78,15 @@ pub fn run_log(command: &str, model: &ConceptRef, su: &Setup, el: &Elements, run
     }
     if su.hm {
         s.push_str(&run.hm_report);
+    }
+    if let Some(i) = init {
+        let _ = writeln!(
+            s,
+            "    ETAT_INIT : order {} of {} (INST={}): every unknown from its DEPL, the cohesive variables from its COHE_ELEM",
+            i.order,
+            i.result.label(),
+            crate::text::sci(i.inst, 6, false)
+        );
     }
     if let Some(n) = &su.newton_note {
         let _ = writeln!(s, "{n}");
@@ -152,61 +167,6 @@ pub fn label(s: &Setup, d: usize) -> String {
         }
     }
     format!("unknown #{d}")
-}
-
-/// DEPL of an X-FEM solution on the mesh nodes: DX DY (DZ), PRE1 for HM
-/// models (on the vertices: the prescribed pressure, zero without one), then
-/// H<j><X|Y|Z> per set, then for HM models H<j>PRE1 per set (vertices).
-pub fn depl_fields(s: &Setup, x: &[f64], pressure: Option<&PorePressure>) -> BTreeMap<String, Field> {
-    let (mesh, xm, xd, hm) = (&*s.mesh, &*s.xm, &s.xd, s.hm);
-    let ndim = xd.ndim;
-    let xyz = ["X", "Y", "Z"];
-    let maxsets = xm.node_sets.iter().map(|s| s.len()).max().unwrap_or(0);
-    let mut comps: Vec<String> = (0..ndim).map(|d| format!("D{}", xyz[d])).collect();
-    if hm {
-        comps.push("PRE1".into());
-    }
-    for j in 0..maxsets {
-        for d in xyz.iter().take(ndim) {
-            comps.push(format!("H{}{d}", j + 1));
-        }
-    }
-    // The Heaviside parts of the pressure (vertices of the enriched cells).
-    let hp = comps.len();
-    if hm {
-        comps.extend((0..maxsets).map(|j| format!("H{}PRE1", j + 1)));
-    }
-    let nc = comps.len();
-    let mut values = vec![f64::NAN; mesh.nnodes() * nc];
-    let mut vertex = vec![false; mesh.nnodes()];
-    for (nodes, t) in mesh.cells.iter().zip(&mesh.cell_types) {
-        if t.dim() == ndim {
-            for &n in &nodes[..t.nvertices()] {
-                vertex[n] = true;
-            }
-        }
-    }
-    for n in 0..mesh.nnodes() {
-        let Some(b) = xd.std[n] else { continue };
-        let row = &mut values[n * nc..(n + 1) * nc];
-        row[..ndim].copy_from_slice(&x[b..b + ndim]);
-        let mut k = ndim;
-        if hm {
-            if vertex[n] {
-                row[k] = pressure.map_or(0.0, |p| p.pre1[n]);
-                for j in 0..xd.sets[n].len() {
-                    row[hp + j] = pressure.map_or(0.0, |p| p.hpre1[n][j]);
-                }
-            }
-            k += 1;
-        }
-        for (j, &s) in xd.sets[n].iter().enumerate() {
-            row[k + j * ndim..k + (j + 1) * ndim].copy_from_slice(&x[s..s + ndim]);
-        }
-    }
-    let mut f = BTreeMap::new();
-    f.insert("DEPL".to_string(), Field::Node { components: comps, values });
-    f
 }
 
 /// SIEF_ELGA of an X-FEM solution: σ = D ε(u) at the bulk points of every model cell, in the order the

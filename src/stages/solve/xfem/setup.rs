@@ -260,6 +260,7 @@ fn zones(
                 packets: pk.packets.clone(),
                 packet_of: pk.packet_of_node.clone(),
                 edges: edges.iter().map(|e| (e.a.min(e.b), e.a.max(e.b))).collect(),
+                cells: cells.clone(),
             });
         }
     }

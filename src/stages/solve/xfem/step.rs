@@ -3,8 +3,10 @@
 
 use super::assemble::{Elements, Law, Lin, Zone};
 use super::conditions::PorePressure;
-use super::report::{depl_fields, label, sief_field, zone_state};
+use super::hydraulic::HydraulicRows;
+use super::report::{label, sief_field, zone_state};
 use super::setup::Setup;
+use super::state::{cohe_field, depl_fields};
 use crate::catalog::args::Args;
 use crate::concepts::result::Step;
 use crate::concepts::ConceptRef;
@@ -37,8 +39,20 @@ pub struct Run {
     pub solver: String,
 }
 
-/// Solve every instant after the first (the initial state, stored as order 0 unless `statics`); the
+/// The state at the first instant: the unknowns and the cohesive variables (zero and sound, or those of
+/// ETAT_INIT), and whether it is stored as a step.
+pub struct Start {
+    pub x: Vec<f64>,
+    pub states: Vec<CzmState>,
+    pub store: bool,
+    /// The state is ETAT_INIT's: its reactions are the reference force the relative criterion falls back
+    /// on if the reactions vanish (as the largest reaction of the earlier steps is in one computation).
+    pub restart: bool,
+}
+
+/// Solve every instant after the first (the initial state, stored as order 0 when `start.store`); the
 /// fields are computed only at the instants `archive` keeps (all without one).
+#[allow(clippy::too_many_arguments)]
 pub fn run(
     a: &Args,
     model: &ConceptRef,
@@ -47,13 +61,14 @@ pub fn run(
     times: &[f64],
     statics: bool,
     archive: Option<&Archive>,
+    start: Start,
 ) -> Result<Run> {
     let (xd, ndim) = (&s.xd, s.ndim());
-    let mut states: Vec<CzmState> = vec![CzmState::default(); el.laws.len()];
-    let mut x = vec![0.0; xd.n];
+    let Start { mut x, mut states, store, restart } = start;
     let mut run = Run::default();
-    if !statics {
-        run.steps.push(Step { nume_ordre: 0, inst: times[0], fields: step_fields(a, s, &x, None)? });
+    let hydro = HydraulicRows::new(a, s, el)?;
+    if store {
+        run.steps.push(Step { nume_ordre: 0, inst: times[0], fields: step_fields(a, s, el, &x, &states, None)? });
     }
     // Largest reference force of the converged steps: the scale of the
     // relative criterion once the forces vanish (a fully broken interface).
@@ -80,9 +95,6 @@ pub fn run(
         let map = DofMap::build(xd.n, &cons).map_err(|e| a.err("EXCIT", e.to_string()))?;
         let fext = super::forces::external(a, s, t, pressure.as_ref())?;
         run.nfree = map.nfree;
-        // Start from the previous state with this step's imposed values.
-        let free: Vec<f64> = map.free_to_full.iter().map(|&d| x[d]).collect();
-        x = map.expand(&free);
         let mut elems = ElementDofs::new();
         for l in &el.lins {
             elems.push(&l.dofs);
@@ -92,6 +104,37 @@ pub fn run(
             elems.push(&v);
         }
         let pattern = SparsityPattern::build(&map, &elems);
+        if restart && n == 1 {
+            // From ETAT_INIT: the reactions of the initial state are the earlier reference force.
+            let mut probe = XfemStep {
+                a,
+                s,
+                lins: &el.lins,
+                laws: &el.laws,
+                map: &map,
+                pattern: pattern.clone(),
+                states: &states,
+                x: x.clone(),
+                x0: &x,
+                hydro: hydro.as_ref(),
+                fext: fext.as_deref(),
+                ref_hist,
+                rf: Vec::new(),
+                k: None,
+                analysis: &mut None,
+                solved: None,
+                reactions: 0.0,
+                vanished: false,
+                t_asm: Duration::ZERO,
+                t_fact: Duration::ZERO,
+            };
+            probe.residual()?;
+            ref_hist = probe.reactions;
+        }
+        // Start from the previous state with this step's imposed values.
+        let x_start = x.clone();
+        let free: Vec<f64> = map.free_to_full.iter().map(|&d| x[d]).collect();
+        x = map.expand(&free);
         let mut step = XfemStep {
             a,
             s,
@@ -101,6 +144,8 @@ pub fn run(
             pattern,
             states: &states,
             x,
+            x0: &x_start,
+            hydro: hydro.as_ref(),
             fext: fext.as_deref(),
             ref_hist,
             rf: Vec::new(),
@@ -146,21 +191,31 @@ pub fn run(
         );
         run.log.push_str(&zone_state(s, el, &states, &x));
         if archive.is_none_or(|ar| ar.keeps(t)) {
-            run.steps.push(Step { nume_ordre: n as i64, inst: t, fields: step_fields(a, s, &x, pressure.as_ref())? });
+            run.steps.push(Step {
+                nume_ordre: n as i64,
+                inst: t,
+                fields: step_fields(a, s, el, &x, &states, pressure.as_ref())?,
+            });
         }
     }
     Ok(run)
 }
 
-/// The fields stored at a step: DEPL, and SIEF_ELGA unless MECA_STATIQUE's OPTION='SANS' asks for none
-/// (hydro-mechanical models, whose SIEF_ELGA would also hold the hydraulic stresses, get none yet).
+/// The fields stored at a step: DEPL, COHE_ELEM with cohesive zones, and SIEF_ELGA unless
+/// MECA_STATIQUE's OPTION='SANS' asks for none (hydro-mechanical models, whose SIEF_ELGA would also hold
+/// the hydraulic stresses, get none yet).
 fn step_fields(
     a: &Args,
     s: &Setup,
+    el: &Elements,
     x: &[f64],
+    states: &[CzmState],
     pressure: Option<&PorePressure>,
 ) -> Result<std::collections::BTreeMap<String, crate::concepts::result::Field>> {
-    let mut f = depl_fields(s, x, pressure);
+    let mut f = depl_fields(a, s, x, pressure)?;
+    if let Some(c) = cohe_field(s, el, states) {
+        f.insert("COHE_ELEM".to_string(), c);
+    }
     if !s.hm && a.text_if_declared("OPTION") != Some("SANS") {
         f.insert("SIEF_ELGA".to_string(), sief_field(a, s, x)?);
     }
@@ -179,6 +234,10 @@ struct XfemStep<'s> {
     pattern: SparsityPattern,
     states: &'s [CzmState],
     x: Vec<f64>,
+    /// The unknowns at the start of the instant, and the hydraulic rows of an HM model (their storage
+    /// terms join the reference force).
+    x0: &'s [f64],
+    hydro: Option<&'s HydraulicRows>,
     /// The external forces of the instant (lip pressures), if any.
     fext: Option<&'s [f64]>,
     ref_hist: f64,
@@ -263,7 +322,10 @@ impl NewtonStep for XfemStep<'_> {
             }
         }
         let abs = inf_norm(&rf);
-        let reactions = reactions.max(fmax);
+        let mut reactions = reactions.max(fmax);
+        if let Some(h) = self.hydro {
+            reactions = reactions.max(h.largest(self.s, self.laws, self.x0, &self.x));
+        }
         self.vanished = reactions <= 1e-6 * self.ref_hist;
         self.reactions = reactions;
         let scale_ref = if self.vanished { self.ref_hist } else { reactions };
