@@ -32,7 +32,7 @@ pub struct DofNumbering {
     /// First dof of each mesh node, `usize::MAX` for nodes outside the model.
     node_first: Vec<usize>,
     /// The components each node carries (bit k: component k), 0 outside the model.
-    node_mask: Vec<u8>,
+    node_mask: Vec<u32>,
     /// Node of each dof.
     pub dof_node: Vec<usize>,
     /// Component of each dof.
@@ -43,8 +43,8 @@ impl DofNumbering {
     /// Number the nodes carried by `cells` (lists of node indices) among
     /// `nnodes` mesh nodes, `ncomp` displacement components each, in node order.
     pub fn new<'a>(nnodes: usize, ncomp: usize, cells: impl IntoIterator<Item = &'a [usize]>) -> DofNumbering {
-        let mut mask = vec![0u8; nnodes];
-        let all = (1u8 << ncomp) - 1;
+        let mut mask = vec![0u32; nnodes];
+        let all = (1u32 << ncomp) - 1;
         for c in cells {
             for &n in c {
                 mask[n] = all;
@@ -55,8 +55,8 @@ impl DofNumbering {
 
     /// Number every node whose `mask` is not empty, with the components of its mask (bit k:
     /// `components[k]`), in node order.
-    pub fn with_components(components: Vec<&'static str>, mask: Vec<u8>) -> DofNumbering {
-        assert!(components.len() <= 8, "at most 8 components per node");
+    pub fn with_components(components: Vec<&'static str>, mask: Vec<u32>) -> DofNumbering {
+        assert!(components.len() <= 32, "at most 32 components per node");
         let mut node_first = vec![usize::MAX; mask.len()];
         let mut dof_node = Vec::new();
         let mut dof_comp = Vec::new();
@@ -91,7 +91,7 @@ impl DofNumbering {
         if f == usize::MAX || comp >= self.ncomp || m & (1 << comp) == 0 {
             return None;
         }
-        Some(f + (m & ((1u8 << comp) - 1)).count_ones() as usize)
+        Some(f + (m & ((1u32 << comp) - 1)).count_ones() as usize)
     }
 
     /// The index of a component name among the numbering's components.

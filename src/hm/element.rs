@@ -97,8 +97,10 @@ pub struct CellPoints {
     /// The Code_Aster families whose points these are (`"FPG9"`, `"NOEU_S"`, `"FPG4+NOEU_S"`).
     pub family: String,
     pub points: Vec<Point>,
-    /// The first local unknown of each node.
+    /// The first local unknown of each displacement function (a node's, or an enriched copy of it).
     pub first: Vec<usize>,
+    /// The local unknown of each pressure function (a vertex's, or an enriched copy of it).
+    pub pfirst: Vec<usize>,
     pub ndof: usize,
 }
 
@@ -140,6 +142,58 @@ pub fn point_count(variant: Variant, t: CellType) -> Result<usize, String> {
     Ok(g + if vertices { t.nvertices() } else { 0 })
 }
 
+/// The shape functions of a cell and of its vertex cell at `xi`, their real gradients, the point's
+/// position and the Jacobian determinant.
+#[allow(clippy::type_complexity)]
+fn geometry(
+    dim: usize,
+    t: CellType,
+    coords: &[[f64; 3]],
+    xi: &[f64; 3],
+) -> Option<(Vec<f64>, Vec<[f64; 3]>, Vec<f64>, Vec<[f64; 3]>, [f64; 3], f64)> {
+    let (nno, nv) = (t.nnodes(), t.nvertices());
+    let mut n = vec![0.0; nno];
+    let mut dref = vec![[0.0; 3]; nno];
+    shape_and_deriv(t, xi, &mut n, &mut dref);
+    let mut nh = vec![0.0; nv];
+    let mut dhref = vec![[0.0; 3]; nv];
+    shape_and_deriv(vertex_type(t), xi, &mut nh, &mut dhref);
+    let mut j = nalgebra::Matrix3::<f64>::identity();
+    let mut x = [0.0; 3];
+    for a in 0..nno {
+        for i in 0..3 {
+            x[i] += n[a] * coords[a][i];
+        }
+    }
+    for r in 0..dim {
+        for c in 0..dim {
+            j[(r, c)] = (0..nno).map(|a| coords[a][r] * dref[a][c]).sum();
+        }
+    }
+    let det = j.determinant();
+    let inv = j.try_inverse().filter(|_| det.is_finite() && det != 0.0)?;
+    let grad = |d: &[f64; 3]| -> [f64; 3] {
+        let mut g = [0.0; 3];
+        for (i, gi) in g.iter_mut().enumerate().take(dim) {
+            *gi = (0..dim).map(|c| d[c] * inv[(c, i)]).sum();
+        }
+        g
+    };
+    let dn = dref.iter().map(grad).collect();
+    let dnh = dhref.iter().map(grad).collect();
+    Some((n, dn, nh, dnh, x, det))
+}
+
+/// A function of an enriched element: node `node`'s function (the displacement's, or the vertex
+/// function for a pressure) times a factor of the enrichment `set` (None: the standard function, factor
+/// 1), its unknowns from local index `first` (`dim` of them for a displacement, one for a pressure).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Column {
+    pub node: usize,
+    pub set: Option<usize>,
+    pub first: usize,
+}
+
 impl CellPoints {
     /// The points of a cell with node coordinates `coords` (Code_Aster's node order).
     pub fn new(kin: Kinematics, variant: Variant, t: CellType, coords: &[[f64; 3]]) -> Result<CellPoints, String> {
@@ -166,48 +220,14 @@ impl CellPoints {
         };
         let dim = kin.dim();
         let (nno, nv) = (t.nnodes(), t.nvertices());
-        let tv = vertex_type(t);
         // AXIS: a point on the axis is weighed with 1e-3 of the cell's largest radius (Code_Aster's rule).
         let r_max = coords.iter().map(|c| c[0]).fold(0.0, f64::max);
         let mut points = Vec::new();
         for (rule, role) in &rules {
             for (k, (xi, w)) in rule.points.iter().zip(&rule.weights).enumerate() {
-                let mut n = vec![0.0; nno];
-                let mut dref = vec![[0.0; 3]; nno];
-                shape_and_deriv(t, xi, &mut n, &mut dref);
-                let mut nh = vec![0.0; nv];
-                let mut dhref = vec![[0.0; 3]; nv];
-                shape_and_deriv(tv, xi, &mut nh, &mut dhref);
-                let mut j = nalgebra::Matrix3::<f64>::identity();
-                let mut x = [0.0; 3];
-                for a in 0..nno {
-                    for i in 0..3 {
-                        x[i] += n[a] * coords[a][i];
-                    }
-                }
-                for r in 0..dim {
-                    for c in 0..dim {
-                        j[(r, c)] = (0..nno).map(|a| coords[a][r] * dref[a][c]).sum();
-                    }
-                }
-                let det = j.determinant();
-                let inv = j.try_inverse().filter(|_| det.is_finite() && det != 0.0).ok_or_else(|| {
-                    format!(
-                        "degenerate {} cell: Jacobian determinant {det:e} at point {} of {}",
-                        t.name(),
-                        k + 1,
-                        rule.name
-                    )
+                let (n, dn, nh, dnh, x, det) = geometry(dim, t, coords, xi).ok_or_else(|| {
+                    format!("degenerate {} cell: singular Jacobian at point {} of {}", t.name(), k + 1, rule.name)
                 })?;
-                let grad = |d: &[f64; 3]| -> [f64; 3] {
-                    let mut g = [0.0; 3];
-                    for (i, gi) in g.iter_mut().enumerate().take(dim) {
-                        *gi = (0..dim).map(|c| d[c] * inv[(c, i)]).sum();
-                    }
-                    g
-                };
-                let dn = dref.iter().map(grad).collect();
-                let dnh = dhref.iter().map(grad).collect();
                 let mut wd = w * det.abs();
                 let mut on_axis = false;
                 if kin == Kinematics::Axis {
@@ -225,21 +245,76 @@ impl CellPoints {
             }
         }
         let mut first = Vec::with_capacity(nno);
+        let mut pfirst = Vec::with_capacity(nv);
         let mut ndof = 0;
         for a in 0..nno {
             first.push(ndof);
+            if a < nv {
+                pfirst.push(ndof + dim);
+            }
             ndof += dim + usize::from(a < nv);
         }
-        Ok(CellPoints { kin, variant, cell: t, family, points, first, ndof })
+        Ok(CellPoints { kin, variant, cell: t, family, points, first, pfirst, ndof })
+    }
+
+    /// The points of an enriched cell (X-FEM): `points` (reference coordinates, weight × |det J| already
+    /// in real measure, a tag such as the sub-domain the point lies in) integrate every term (`XINT`);
+    /// the displacement functions are `ucols` (a node's function times `factor(node, set, tag)`), the
+    /// pressure functions `pcols` (a vertex's function times the same factor), on `ndof` local unknowns.
+    /// The factors are constant per tag (Heaviside functions): their gradients vanish.
+    #[allow(clippy::too_many_arguments)]
+    pub fn enriched(
+        kin: Kinematics,
+        t: CellType,
+        coords: &[[f64; 3]],
+        points: &[([f64; 3], f64, i32)],
+        ucols: &[Column],
+        pcols: &[Column],
+        ndof: usize,
+        factor: &dyn Fn(usize, Option<usize>, i32) -> f64,
+    ) -> Result<CellPoints, String> {
+        if kin == Kinematics::Axis {
+            return Err("enriched AXIS elements are not supported yet".into());
+        }
+        if t.dim() != kin.dim() {
+            return Err(format!("a {} cell is not a volume cell of a {}D model", t.name(), kin.dim()));
+        }
+        let dim = kin.dim();
+        let mut out = Vec::with_capacity(points.len());
+        for (k, &(xi, w, tag)) in points.iter().enumerate() {
+            let (n, dn, nh, dnh, x, _) = geometry(dim, t, coords, &xi).ok_or_else(|| {
+                format!("degenerate {} cell: singular Jacobian at sub-cell point {}", t.name(), k + 1)
+            })?;
+            let f = |c: &Column| match c.set {
+                None => 1.0,
+                Some(_) => factor(c.node, c.set, tag),
+            };
+            let scale = |v: [f64; 3], s: f64| v.map(|x| x * s);
+            let un = ucols.iter().map(|c| f(c) * n[c.node]).collect();
+            let udn = ucols.iter().map(|c| scale(dn[c.node], f(c))).collect();
+            let pn = pcols.iter().map(|c| f(c) * nh[c.node]).collect();
+            let pdn = pcols.iter().map(|c| scale(dnh[c.node], f(c))).collect();
+            out.push(Point { xi, w, x, n: un, dn: udn, nh: pn, dnh: pdn, on_axis: false, role: ALL });
+        }
+        Ok(CellPoints {
+            kin,
+            variant: Variant::Full,
+            cell: t,
+            family: "XINT".to_string(),
+            points: out,
+            first: ucols.iter().map(|c| c.first).collect(),
+            pfirst: pcols.iter().map(|c| c.first).collect(),
+            ndof,
+        })
     }
 
     /// The local index of displacement component `i` of node `a`.
     pub fn u(&self, a: usize, i: usize) -> usize {
         self.first[a] + i
     }
-    /// The local index of the pressure of vertex `a`.
+    /// The local index of the pressure of vertex `a` (of pressure function `a`).
     pub fn p(&self, a: usize) -> usize {
-        self.first[a] + self.kin.dim()
+        self.pfirst[a]
     }
 
     /// The strain-displacement rows of node `a` at point `pt`: `b[c][i]`, strain component `c`
@@ -269,7 +344,7 @@ impl CellPoints {
     fn kinematics_at(&self, pt: &Point, ue: &[f64]) -> ([f64; 6], f64, [f64; 3]) {
         let dim = self.kin.dim();
         let mut eps = [0.0; 6];
-        for a in 0..self.cell.nnodes() {
+        for a in 0..self.first.len() {
             let b = self.b(pt, a);
             for (c, e) in eps.iter_mut().enumerate() {
                 *e += (0..dim).map(|i| b[c][i] * ue[self.u(a, i)]).sum::<f64>();
@@ -335,7 +410,8 @@ pub fn element(
     step: &StepData,
 ) -> Result<ElementOutput, IntegrationFailure> {
     let dim = cp.kin.dim();
-    let (nno, nv, nd) = (cp.cell.nnodes(), cp.cell.nvertices(), cp.ndof);
+    // The displacement and pressure functions: the nodes and vertices, and their enriched copies.
+    let (nno, nv, nd) = (cp.first.len(), cp.pfirst.len(), cp.ndof);
     let d = IsoElastic::new(mat.e, mat.nu).hooke(cp.kin.mechanics());
     let g = step.gravity;
     let mut fint = vec![0.0; nd];
@@ -551,6 +627,63 @@ mod tests {
             let sp: f64 = (0..4).map(|a| out.fint[cp.p(a)]).sum();
             let area: f64 = cp.points.iter().filter(|p| p.role.storage).map(|p| p.w).sum();
             assert!((sp + area * out.states.last().unwrap().m).abs() < 1e-9 * sp.abs(), "{variant:?}");
+        }
+    }
+
+    /// An enriched element whose copies carry the whole field (standard unknowns zero, each copy's factor
+    /// 2 and its unknowns half the field) has the standard element's states, and forces twice its own on
+    /// the copies' rows.
+    #[test]
+    fn enriched_copies_carry_the_field() {
+        let mut mat = sample();
+        mat.inv_kw = 1e-7;
+        let t = CellType::Quad8;
+        let xs = distorted(t);
+        let cp = CellPoints::new(Kinematics::DPlan, Variant::Full, t, &xs).unwrap();
+        let pts: Vec<([f64; 3], f64, i32)> = cp.points.iter().map(|p| (p.xi, p.w, 7)).collect();
+        // Layout node by node: DX DY [PRE1], then the copy's DX DY [PRE1].
+        let (mut ucols, mut pcols, mut next) = (Vec::new(), Vec::new(), 0);
+        let mut map = Vec::new(); // (standard local index, enriched local index of the copy)
+        for a in 0..8 {
+            for set in [None, Some(0)] {
+                for i in 0..2 {
+                    if set.is_some() {
+                        map.push((cp.u(a, i), next + i));
+                    }
+                }
+                ucols.push(Column { node: a, set, first: next });
+                next += 2;
+                if a < 4 {
+                    if set.is_some() {
+                        map.push((cp.p(a), next));
+                    }
+                    pcols.push(Column { node: a, set, first: next });
+                    next += 1;
+                }
+            }
+        }
+        let factor = |_: usize, _: Option<usize>, tag: i32| if tag == 7 { 2.0 } else { 0.0 };
+        let ce = CellPoints::enriched(Kinematics::DPlan, t, &xs, &pts, &ucols, &pcols, next, &factor).unwrap();
+        let mut u = unknowns(&cp, 0.4);
+        for a in 0..4 {
+            u[cp.p(a)] = 1e5 * (1.0 + a as f64);
+        }
+        let mut ue = vec![0.0; ce.ndof];
+        for &(s, e) in &map {
+            ue[e] = u[s] / 2.0;
+        }
+        let step = StepData { dt: 5.0, theta: 0.8, gravity: [0.0, -9.81, 0.0] };
+        let prev = cp.initial_states(&mat, &vec![0.0; cp.ndof]);
+        let out = element(&cp, &mat, &u, &prev, &step).unwrap();
+        let oute = element(&ce, &mat, &ue, &prev, &step).unwrap();
+        for (s1, s2) in out.states.iter().zip(&oute.states) {
+            assert!(
+                (s1.sig[1] - s2.sig[1]).abs() <= 1e-9 * s1.sig[1].abs() && (s1.m - s2.m).abs() <= 1e-12 * s1.m.abs()
+            );
+        }
+        for &(s, e) in &map {
+            let (f, fe) = (out.fint[s], oute.fint[e]);
+            assert!((fe - 2.0 * f).abs() <= 1e-9 * f.abs().max(1e-3), "row {s}: {fe} against 2 × {f}");
         }
     }
 

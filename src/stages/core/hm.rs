@@ -8,8 +8,10 @@ use crate::concepts::model::{Material, MaterialField, Modelling, Role};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
 use crate::fem::dofs::DofNumbering;
+use crate::hm::element::Column;
 use crate::hm::{Biot, CellPoints, Kinematics, Variant};
 use crate::mesh::Mesh;
+use crate::xfem::model::XfemModel;
 use std::rc::Rc;
 
 /// The kinematics and the integration of an HM modelisation; None for the others.
@@ -55,6 +57,24 @@ pub struct HmProblem {
     pub numbering: DofNumbering,
     /// The index of PRE1 among the numbering's components.
     pub pre1: usize,
+    /// MODI_MODELE_XFEM: the enrichment of an X-FEM model (Heaviside-enriched displacement and pressure,
+    /// components `H<j>X … H<j>PRE1` after the standard ones).
+    pub xfem: Option<Rc<XfemModel>>,
+}
+
+/// The components of the Heaviside enrichment sets, per set: `H<j>X H<j>Y [H<j>Z] H<j>PRE1`.
+const HEAVISIDE: [[&str; 4]; 4] = [
+    ["H1X", "H1Y", "H1Z", "H1PRE1"],
+    ["H2X", "H2Y", "H2Z", "H2PRE1"],
+    ["H3X", "H3Y", "H3Z", "H3PRE1"],
+    ["H4X", "H4Y", "H4Z", "H4PRE1"],
+];
+
+impl HmProblem {
+    /// True when component `k` of the numbering is a pressure (PRE1 or a Heaviside part of it).
+    pub fn is_pressure(&self, k: usize) -> bool {
+        self.numbering.components[k].ends_with("PRE1")
+    }
 }
 
 impl HmProblem {
@@ -188,19 +208,48 @@ pub fn hm_problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<HmProblem> {
     };
     let dim = kin.dim();
     let pre1 = dim;
-    // DX DY [DZ] on every node of the model's cells, PRE1 on the vertices.
-    let mut mask = vec![0u8; mesh.nnodes()];
+    let xm = m.xfem.clone();
+    if xm.is_some() && variant != Variant::Full {
+        return Err(Error::unsupported(format!(
+            "X-FEM {modelling} elements are not supported yet (D_PLAN_HM and 3D_HM are)"
+        )));
+    }
+    let nsets = xm.as_ref().map_or(0, |x| x.node_sets.iter().map(Vec::len).max().unwrap_or(0));
+    if nsets > HEAVISIDE.len() {
+        return Err(Error::unsupported(format!("nodes with {nsets} Heaviside sets are not supported yet (4 are)")));
+    }
+    // DX DY [DZ] on every node of the model's cells, PRE1 on the vertices; on an X-FEM model, per
+    // enrichment set of a node, its Heaviside displacement and (on a vertex) pressure.
+    let per_set = dim + 1;
+    let mut mask = vec![0u32; mesh.nnodes()];
+    let mut vertex = vec![false; mesh.nnodes()];
     for &c in bulk.iter().chain(&skin) {
         let t = mesh.cell_types[c];
         for (k, &n) in mesh.cells[c].iter().enumerate() {
             mask[n] |= (1 << dim) - 1;
             if k < t.nvertices() {
                 mask[n] |= 1 << pre1;
+                vertex[n] = true;
+            }
+        }
+    }
+    if let Some(x) = &xm {
+        for n in 0..mesh.nnodes() {
+            for j in 0..x.node_sets[n].len() {
+                let base = per_set * (j + 1);
+                mask[n] |= ((1 << dim) - 1) << base;
+                if vertex[n] {
+                    mask[n] |= 1 << (base + dim);
+                }
             }
         }
     }
     let mut names = crate::fem::dofs::COMPONENTS[..dim].to_vec();
     names.push("PRE1");
+    for set in HEAVISIDE.iter().take(nsets) {
+        names.extend(&set[..dim]);
+        names.push(set[3]);
+    }
     let numbering = DofNumbering::with_components(names, mask);
     let mut cells: Vec<Option<HmCell>> = (0..mesh.cells.len()).map(|_| None).collect();
     let mut cache: Vec<(*const crate::concepts::Concept, (Biot, Option<ConceptRef>))> = Vec::new();
@@ -220,12 +269,58 @@ pub fn hm_problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<HmProblem> {
                 v
             }
         };
-        let points = CellPoints::new(kin, variant, mesh.cell_types[c], &coords_of(&mesh, c))
-            .map_err(|e| Error::runtime(format!("cell {name}: {e}")))?;
+        let points = match &xm {
+            Some(x) if x.cells.contains_key(&c) => enriched_points(&mesh, x, kin, c, &vertex),
+            _ => CellPoints::new(kin, variant, mesh.cell_types[c], &coords_of(&mesh, c)),
+        }
+        .map_err(|e| Error::runtime(format!("cell {name}: {e}")))?;
         let dofs = numbering.cell_dofs(&mesh.cells[c]).expect("the cell's nodes are numbered");
+        if dofs.len() != points.ndof {
+            return Err(Error::runtime(format!(
+                "cell {name}: {} unknowns on its nodes, {} in its element (a node enriched outside the X-FEM cells?)",
+                dofs.len(),
+                points.ndof
+            )));
+        }
         cells[c] = Some(HmCell { points, mat, pesa_mult, dofs });
     }
-    Ok(HmProblem { mesh, modelling, kin, variant, bulk, skin, cells, numbering, pre1 })
+    Ok(HmProblem { mesh, modelling, kin, variant, bulk, skin, cells, numbering, pre1, xfem: xm })
+}
+
+/// The element of an X-FEM cell: its sub-cells' points (`XINT`), the functions of its nodes and their
+/// Heaviside copies in the numbering's order (node by node: DX DY [DZ], PRE1 on a vertex, then per set
+/// the same), the factors ψ of each point's sub-domain.
+fn enriched_points(
+    mesh: &Mesh,
+    xm: &XfemModel,
+    kin: Kinematics,
+    c: usize,
+    vertex: &[bool],
+) -> std::result::Result<CellPoints, String> {
+    let t = mesh.cell_types[c];
+    let nodes = &mesh.cells[c];
+    let coords = coords_of(mesh, c);
+    let dim = kin.dim();
+    let (mut ucols, mut pcols) = (Vec::new(), Vec::new());
+    let mut next = 0;
+    for (a, &n) in nodes.iter().enumerate() {
+        let v = vertex[n];
+        if v != (a < t.nvertices()) {
+            return Err(format!("node {} is a vertex of one cell and a middle node of another", mesh.node_names[n]));
+        }
+        for set in std::iter::once(None).chain((0..xm.node_sets[n].len()).map(Some)) {
+            ucols.push(Column { node: a, set, first: next });
+            next += dim;
+            if v {
+                pcols.push(Column { node: a, set, first: next });
+                next += 1;
+            }
+        }
+    }
+    let points: Vec<([f64; 3], f64, i32)> =
+        crate::xfem::discrete::bulk_points(t, &coords, xm, c)?.into_iter().map(|p| (p.xi, p.w, p.region)).collect();
+    let factor = |a: usize, set: Option<usize>, region: i32| set.map_or(1.0, |j| xm.psi(nodes[a], j, region));
+    CellPoints::enriched(kin, t, &coords, &points, &ucols, &pcols, next, &factor)
 }
 
 /// The number of integration points of a cell's element (the points of its ELGA fields): the HM

@@ -108,8 +108,10 @@ pub fn loads_at(
                     })?;
                     match num.dof(*node, k) {
                         Some(d) => cons.impose(d, mult * load_value(value, &mesh.coords[*node], t)?),
-                        // A middle node carries no pressure: Code_Aster passes over it (afddli).
-                        None if k == p.pre1 && num.has_node(*node) => {}
+                        // A middle node carries no pressure, a node outside the interface's reach no Heaviside
+                        // unknown: Code_Aster passes over them (afddli).
+                        None if (p.is_pressure(k) || p.xfem.is_some() && component.starts_with('H'))
+                            && num.has_node(*node) => {}
                         None => {
                             return Err(a.err(
                                 "EXCIT",
@@ -119,9 +121,17 @@ pub fn loads_at(
                     }
                 }
                 LoadItem::CrackPressure { name: crack, .. } => {
-                    return Err(
-                        a.err("EXCIT", format!("load {name}: PRES_REP on the lips of {crack} needs the X-FEM model"))
-                    )
+                    return Err(a.err(
+                        "EXCIT",
+                        format!(
+                            "load {name}: PRES_REP on the lips of {crack} {}",
+                            if p.xfem.is_some() {
+                                "with coupled flow in the X-FEM elements is not supported yet"
+                            } else {
+                                "needs the X-FEM model"
+                            }
+                        ),
+                    ))
                 }
                 LoadItem::Relation { terms, value } => {
                     let mut tt = Vec::new();
@@ -179,9 +189,10 @@ pub fn loads_at(
                         if let Some(e) = err.into_inner() {
                             return Err(e.at(a.span));
                         }
-                        for (d, v) in dofs.iter().zip(fe) {
+                        for (d, v) in dofs.iter().zip(&fe) {
                             f[*d] += v;
                         }
+                        add_enriched(a, p, c, &fe, dim, &mut f)?;
                     }
                 }
                 LoadItem::Pressure { cells, value } => {
@@ -192,9 +203,10 @@ pub fn loads_at(
                             xs.iter().map(|x| load_value(value, x, t).map(|v| v * mult)).collect::<Result<_>>()?;
                         let fe = elasticity::pressure_force(md, mesh.cell_types[c], &xs, &pres, None)
                             .map_err(|e| Error::runtime(e.to_string()).at(a.span))?;
-                        for (d, v) in dofs.iter().zip(fe) {
+                        for (d, v) in dofs.iter().zip(&fe) {
                             f[*d] += v;
                         }
+                        add_enriched(a, p, c, &fe, dim, &mut f)?;
                     }
                 }
                 LoadItem::FluxThm { cells, value } => {
@@ -221,6 +233,7 @@ pub fn loads_at(
                             })?;
                             f[d] += v;
                         }
+                        add_enriched(a, p, c, &fe, 0, &mut f)?;
                     }
                 }
                 LoadItem::Gravity { g, direction, cells } => {
@@ -248,6 +261,52 @@ pub fn loads_at(
     Ok((cons, f))
 }
 
+/// The Heaviside parts of a load on a skin cell of an X-FEM model: `fe`, the standard nodal values
+/// (`width` components per node: the displacements; 0 for one pressure value per vertex), times ψ of
+/// each enrichment set of the cell's nodes on the cell's side, on the set's unknowns. A skin cell the
+/// interface crosses is refused (its integrals would need its cutting).
+fn add_enriched(a: &Args, p: &HmProblem, c: usize, fe: &[f64], width: usize, f: &mut [f64]) -> Result<()> {
+    let Some(xm) = &p.xfem else { return Ok(()) };
+    let (mesh, num) = (&p.mesh, &p.numbering);
+    let nodes = &mesh.cells[c];
+    if nodes.iter().all(|&n| xm.node_sets[n].is_empty()) {
+        return Ok(());
+    }
+    if xm.lsn.iter().any(|l| nodes.iter().any(|&n| l[n] > 0.0) && nodes.iter().any(|&n| l[n] < 0.0)) {
+        return Err(a.err(
+            "EXCIT",
+            format!(
+                "a load on boundary cell {}, which an X-FEM interface crosses, is not supported yet with coupled flow",
+                mesh.cell_names[c]
+            ),
+        ));
+    }
+    let t = mesh.cell_types[c];
+    let ff = crate::fem::reference::shape(t, &crate::fem::reference::ref_centroid(t));
+    let signs = crate::xfem::model::point_signs(&xm.lsn, &xm.masters, nodes, &ff, &[], &[]);
+    let region = crate::xfem::region_code(&signs);
+    let xyz = ["X", "Y", "Z"];
+    for (a_n, &n) in nodes.iter().enumerate() {
+        for j in 0..xm.node_sets[n].len() {
+            let psi = xm.psi(n, j, region);
+            if psi == 0.0 {
+                continue;
+            }
+            let targets: Vec<(String, f64)> = if width == 0 {
+                fe.get(a_n).map(|v| vec![(format!("H{}PRE1", j + 1), *v)]).unwrap_or_default()
+            } else {
+                (0..width).map(|i| (format!("H{}{}", j + 1, xyz[i]), fe[a_n * width + i])).collect()
+            };
+            for (comp, v) in targets {
+                if let Some(d) = num.component(&comp).and_then(|k| num.dof(n, k)) {
+                    f[d] += psi * v;
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 /// The fluid's gravity of a cell at `t`: THM_DIFFU PESA_X/Y/Z × PESA_MULT(t).
 pub fn gravity(cell: &crate::stages::core::hm::HmCell, t: f64) -> Result<[f64; 3]> {
     let m = match &cell.pesa_mult {
@@ -269,7 +328,7 @@ pub fn report(
     seconds: f64,
 ) -> Result<String> {
     let num = &p.numbering;
-    let npre = (0..num.ndofs()).filter(|&d| num.node_comp(d).1 == p.pre1).count();
+    let npre = (0..num.ndofs()).filter(|&d| p.is_pressure(num.node_comp(d).1)).count();
     let nu = num.ndofs() - npre;
     let variant = match p.variant {
         Variant::Full => "all terms at the Gauss points",
@@ -283,10 +342,21 @@ pub fn report(
         p.bulk.len()
     );
     s.push_str(&format!(
-        "    unknowns  : {} ({nu} displacements, {npre} pressures PRE1 on vertices), {} solved\n",
+        "    unknowns  : {} ({nu} displacements, {npre} pressures PRE1{} on vertices), {} solved\n",
         num.ndofs(),
+        if p.xfem.is_some() { " and H*PRE1" } else { "" },
         log.solved
     ));
+    if let Some(xm) = &p.xfem {
+        let cut = p.elements().filter(|(_, c)| c.points.family == "XINT").count();
+        s.push_str(&format!(
+            "    X-FEM     : {} Heaviside sets over {} nodes, displacement and pressure enriched (H*X H*Y [H*Z] \
+             and H*PRE1 in the counts above); {cut} cells integrated on their sub-cells; the interfaces are \
+             impervious and traction-free (no interface unknowns)\n",
+            xm.n_sets(),
+            xm.node_sets.iter().filter(|v| !v.is_empty()).count()
+        ));
+    }
     let (elim_u, elim_p) = (log.eliminated_u, log.eliminated_p);
     if elim_p == npre && npre > 0 {
         s.push_str(&format!(

@@ -209,7 +209,7 @@ impl Driver<'_> {
             let row: Vec<f64> = map
                 .free_to_full
                 .iter()
-                .map(|&d| if p.numbering.node_comp(d).1 == p.pre1 { self.pressure_row_scale } else { 1.0 })
+                .map(|&d| if p.is_pressure(p.numbering.node_comp(d).1) { self.pressure_row_scale } else { 1.0 })
                 .collect();
             let (cp, ri) = (k.symbolic().col_ptr(), k.symbolic().row_idx());
             let mut vals = k.val().to_vec();
@@ -270,8 +270,8 @@ impl Driver<'_> {
             free[d] = true;
         }
         log.solved = map.nfree;
-        log.eliminated_p = (0..n).filter(|&d| !free[d] && p.numbering.node_comp(d).1 == p.pre1).count();
-        log.eliminated_u = (0..n).filter(|&d| !free[d] && p.numbering.node_comp(d).1 != p.pre1).count();
+        log.eliminated_p = (0..n).filter(|&d| !free[d] && p.is_pressure(p.numbering.node_comp(d).1)).count();
+        log.eliminated_u = (0..n).filter(|&d| !free[d] && !p.is_pressure(p.numbering.node_comp(d).1)).count();
         let elems = self.elements();
         let pattern = SparsityPattern::build(&map, &elems);
         let sc = StepFrame { pattern, elems, fext, t1, dt };

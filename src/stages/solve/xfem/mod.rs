@@ -72,7 +72,14 @@ fn solve_xfem(
     // The unknowns the kinematic conditions prescribe, at the first instant solved: multiplier components
     // that test only prescribed jumps are removed (`discrete::dead_components`).
     let t_first = times.get(1).or(times.last()).copied().unwrap_or(0.0);
-    let cons = conditions::constraints(a, model, &s, t_first)?.cons;
+    let first = conditions::constraints(a, model, &s, t_first)?;
+    if first.free_hydraulics.is_some() && s.zones.is_empty() && !statics && init.is_none() {
+        // Coupled flow without cohesive interfaces: the HM driver, on the enriched elements
+        // (`stages::core::hm`), solves the flow with the mechanics.
+        return crate::stages::solve::hm::stat_non_line_hm(ctx, a, model);
+    }
+    first.require_prescribed_hydraulics(a)?;
+    let cons = first.cons;
     let fixed: std::collections::BTreeSet<usize> = cons.imposed.iter().map(|&(d, _)| d).collect();
     let el = assemble::elements(a, &s, &fixed)?;
     // ARCHIVAGE (STAT_NON_LINE): the instants and fields stored.

@@ -76,8 +76,9 @@ pub fn run(
     // The symbolic analysis, reused across Newton iterations and instants while the pattern holds.
     let mut analysis: Option<Analysis> = None;
     for (n, &t) in times.iter().enumerate().skip(1) {
-        let super::conditions::Conditions { mut cons, report: hydr, pins, pressure } =
-            super::conditions::constraints(a, model, s, t)?;
+        let conditions = super::conditions::constraints(a, model, s, t)?;
+        conditions.require_prescribed_hydraulics(a)?;
+        let super::conditions::Conditions { mut cons, report: hydr, pins, pressure, .. } = conditions;
         // Removed multiplier components: their λ, w and μ are zero.
         for (zi, dead) in el.dead.iter().enumerate() {
             let crack = s.zones[zi].crack;
