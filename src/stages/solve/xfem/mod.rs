@@ -64,7 +64,8 @@ fn solve_xfem(
     let t_first = times.get(1).or(times.last()).copied().unwrap_or(0.0);
     let (cons, _, _) = conditions::constraints(a, model, &s, t_first)?;
     let fixed: std::collections::BTreeSet<usize> = cons.imposed.iter().map(|&(d, _)| d).collect();
-    let el = assemble::elements(a, &s, &fixed)?;
+    let map = crate::fem::dofs::DofMap::build(s.xd.n, &cons).map_err(|e| a.err("EXCIT", e.to_string()))?;
+    let el = assemble::elements(a, &s, &fixed, &map)?;
     // ARCHIVAGE (STAT_NON_LINE): the instants and fields stored.
     let archive = if statics { None } else { Some(crate::stages::core::newton::Archive::from_args(a, &times)?) };
     let mut run = step::run(a, model, &s, &el, &times, statics, archive.as_ref())?;
