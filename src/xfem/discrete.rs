@@ -10,6 +10,7 @@
 //! Displacement field in a region R: `u = Σ_i N_i (a_i + Σ_j ψ_ij(R) h_ij)`.
 
 use super::model::XfemModel;
+use crate::fem::dofs::DofMap;
 use crate::fem::quadrature::{aster_rule, gauss_legendre, rule_for_degree, QuadratureRule, RefDomain};
 use crate::fem::reference::{jacobian, jacobian_inverse, shape, shape_and_deriv};
 use crate::mesh::{CellType, Mesh};
@@ -850,4 +851,125 @@ pub fn couplings(
         out.push(Coupling { cell: c, crack: g, packets: pk, c: cm, mm, m });
     }
     Ok(out)
+}
+
+/// A singular value of the scaled coupling block (columns of unit norm) below which its direction is
+/// null ([`null_multipliers`]). Structural null directions come out at 1e-16 or below; an interface
+/// 1e-7 … 1e-11 from a row of nodes, or tilted by 1e-7 … 1e-5 rad from one, turns some of them into
+/// directions of 1e-10 … 1e-7, whose μ is then fixed only to round-off/σ² and can wake the cohesive law.
+/// Removing a direction of singular value σ drops a force of relative size σ on the jumps it tests,
+/// which the stiffness of near-sliver sets can magnify: on the random linear cuts of
+/// `tests/it/xfem/property.rs` (3 × 1500, docs/stability.md) the bound 1e-6 put "anywhere" cuts
+/// 1e-4·U off, 1e-9 left three near-node cuts unconverged or 2e-8·U off, and 1e-8 (as 1e-7) passed
+/// every cut, worst 3.8e-9·U.
+pub const NULL_SINGULAR_VALUE: f64 = 1e-8;
+
+/// The multiplier directions of one crack that test no free jump: combinations v of the packets'
+/// components (packet, q of the local basis) with Cᵀv = 0 on every free unknown, the `dead` components
+/// left out. Such a v is a null direction of the whole tangent — μ along it changes no force on a free
+/// unknown, and its λ = Mμ/m is arbitrary and can wake the cohesive law. They appear on linear cells
+/// where the interface meets faces on which the jump is prescribed (`H1Y=0` …): each packet there brings
+/// one jump function per direction, and when the face is at an angle to the interface the prescribed
+/// directions mix n, τ1 and τ2, which [`dead_components`] (one component at a time) does not catch.
+///
+/// `map` eliminates the kinematic conditions: an unknown is replaced by the free unknowns it is a
+/// combination of (none when prescribed), so that conditions and relations both count. Only packets near prescribed jumps can carry such a direction:
+/// the search runs on the packets active in a cell with a non-free jump unknown and on the packets that
+/// share a cell with those. The null space of that block is exact for the whole matrix, since the other
+/// packets' columns are zero in it; it is taken from an SVD with the columns scaled to unit norm
+/// (singular values below [`NULL_SINGULAR_VALUE`]). Each direction is returned as (packet, component,
+/// coefficient), the largest coefficient 1; the caller keeps μ orthogonal to them (relations Σ v μ = 0),
+/// which changes no force on a free unknown.
+pub fn null_multipliers(
+    couplings: &[Coupling],
+    xd: &XDofs,
+    mesh: &Mesh,
+    ndim: usize,
+    dead: &BTreeSet<(usize, usize)>,
+    map: &DofMap,
+) -> Vec<Vec<(usize, usize, f64)>> {
+    let rows_of = |cp: &Coupling| -> Vec<usize> { xd.cell_dofs(&mesh.cells[cp.cell]) };
+    // Packets of cells where a jump unknown is not free.
+    let mut near: BTreeSet<usize> = BTreeSet::new();
+    for cp in couplings {
+        let np = cp.packets.len() * ndim;
+        let touched = rows_of(cp)
+            .iter()
+            .enumerate()
+            .any(|(r, &d)| !map.is_free(d) && cp.c[r * np..(r + 1) * np].iter().any(|v| *v != 0.0));
+        if touched {
+            near.extend(cp.packets.iter().copied());
+        }
+    }
+    if near.is_empty() {
+        return Vec::new();
+    }
+    let mut group = near.clone();
+    for cp in couplings {
+        if cp.packets.iter().any(|k| near.contains(k)) {
+            group.extend(cp.packets.iter().copied());
+        }
+    }
+    let cols: Vec<(usize, usize)> =
+        group.iter().flat_map(|&k| (0..ndim).map(move |q| (k, q))).filter(|kq| !dead.contains(kq)).collect();
+    let col_of: BTreeMap<(usize, usize), usize> = cols.iter().enumerate().map(|(i, &kq)| (kq, i)).collect();
+    let mut row_of: BTreeMap<usize, usize> = BTreeMap::new();
+    let mut entries: Vec<(usize, usize, f64)> = Vec::new();
+    for cp in couplings.iter().filter(|cp| cp.packets.iter().any(|k| group.contains(k))) {
+        let np = cp.packets.len() * ndim;
+        for (r, d) in rows_of(cp).into_iter().enumerate() {
+            let row = &cp.c[r * np..(r + 1) * np];
+            if row.iter().all(|v| *v == 0.0) {
+                continue;
+            }
+            for &(i, c) in map.expr(d).0 {
+                let nr = row_of.len();
+                let ri = *row_of.entry(i).or_insert(nr);
+                for (kl, &k) in cp.packets.iter().enumerate() {
+                    for q in 0..ndim {
+                        if let Some(&ci) = col_of.get(&(k, q)) {
+                            let v = row[kl * ndim + q];
+                            if v != 0.0 {
+                                entries.push((ri, ci, c * v));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let nc = cols.len();
+    // Zero rows pad the block to square when it has fewer rows than columns.
+    let nr = row_of.len().max(nc);
+    let mut a = nalgebra::DMatrix::<f64>::zeros(nr, nc);
+    for (r, c, v) in entries {
+        a[(r, c)] += v;
+    }
+    let scale: Vec<f64> = (0..nc)
+        .map(|c| {
+            let n = a.column(c).norm();
+            if n > 0.0 {
+                1.0 / n
+            } else {
+                1.0
+            }
+        })
+        .collect();
+    for (c, s) in scale.iter().enumerate() {
+        a.column_mut(c).scale_mut(*s);
+    }
+    let svd = a.svd(false, true);
+    let Some(vt) = svd.v_t else { return Vec::new() };
+    let mut out = Vec::new();
+    for (i, &sv) in svd.singular_values.iter().enumerate() {
+        if sv > NULL_SINGULAR_VALUE {
+            continue;
+        }
+        let v: Vec<f64> = (0..nc).map(|c| vt[(i, c)] * scale[c]).collect();
+        let vmax = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let dir: Vec<(usize, usize, f64)> =
+            cols.iter().zip(&v).filter(|(_, x)| x.abs() > 1e-12 * vmax).map(|(&(k, q), x)| (k, q, x / vmax)).collect();
+        out.push(dir);
+    }
+    out
 }

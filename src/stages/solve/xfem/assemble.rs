@@ -4,6 +4,7 @@
 use super::setup::Setup;
 use crate::catalog::args::Args;
 use crate::diag::{Error, Result};
+use crate::fem::dofs::DofMap;
 use crate::stages::core::problem::elastic_of;
 use crate::xfem::czm::CzmParams;
 use crate::xfem::discrete::{self, Coupling, XDofs};
@@ -44,11 +45,16 @@ pub struct Elements {
     /// Per zone, the multiplier components (packet, q) removed because they test only prescribed jumps
     /// (`discrete::dead_components`): their λ, w and μ are held at zero.
     pub dead: Vec<BTreeSet<(usize, usize)>>,
+    /// Per zone, the combinations of multiplier components that test no free jump
+    /// (`discrete::null_multipliers`): the μ are kept orthogonal to them (relations Σ v μ = 0 on the
+    /// full unknowns).
+    pub null: Vec<Vec<Vec<(usize, f64)>>>,
     pub time: Duration,
 }
 
-/// `fixed`: the unknowns the kinematic conditions prescribe (at the first instant solved).
-pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>) -> Result<Elements> {
+/// `fixed`: the unknowns the kinematic conditions prescribe, and `map` their elimination with the
+/// relations (at the first instant solved).
+pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> Result<Elements> {
     let t0 = Instant::now();
     let (mesh, xm, xd, md, ndim) = (&s.mesh, &s.xm, &s.xd, s.md, s.ndim());
     let mut lins: Vec<Lin> = Vec::new();
@@ -65,6 +71,7 @@ pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>) -> Result<Elements
     let mut laws: Vec<Law> = Vec::new();
     let mut lumped: Vec<Vec<f64>> = Vec::new();
     let mut dead_all: Vec<BTreeSet<(usize, usize)>> = Vec::new();
+    let mut null_all: Vec<Vec<Vec<(usize, f64)>>> = Vec::new();
     // A node's jump in direction d is prescribed when every Heaviside unknown of the node in d is.
     let fixed_jump = |n: usize, d: usize| xd.sets[n].iter().all(|&b| fixed.contains(&(b + d)));
     let lonref = {
@@ -123,11 +130,16 @@ pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>) -> Result<Elements
             }
             laws.push(Law { zone: zi, m: mk, base: xd.packets[z.crack][k] });
         }
+        let null = discrete::null_multipliers(&cps, xd, mesh, ndim, &dead, map)
+            .into_iter()
+            .map(|v| v.into_iter().map(|(k, q, c)| (xd.packets[z.crack][k] + 2 * ndim + q, c)).collect())
+            .collect();
         lumped.push(m);
         dead_all.push(dead);
+        null_all.push(null);
     }
 
-    Ok(Elements { lins, laws, lumped, dead: dead_all, time: t0.elapsed() })
+    Ok(Elements { lins, laws, lumped, dead: dead_all, null: null_all, time: t0.elapsed() })
 }
 
 /// The mortar coupling of one cell with the packets it touches: the unknowns (the cell's, then w and μ

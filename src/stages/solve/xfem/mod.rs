@@ -81,7 +81,8 @@ fn solve_xfem(
     first.require_prescribed_hydraulics(a)?;
     let cons = first.cons;
     let fixed: std::collections::BTreeSet<usize> = cons.imposed.iter().map(|&(d, _)| d).collect();
-    let el = assemble::elements(a, &s, &fixed)?;
+    let map = crate::fem::dofs::DofMap::build(s.xd.n, &cons).map_err(|e| a.err("EXCIT", e.to_string()))?;
+    let el = assemble::elements(a, &s, &fixed, &map)?;
     // ARCHIVAGE (STAT_NON_LINE): the instants and fields stored.
     let archive = if statics { None } else { Some(crate::stages::core::newton::Archive::from_args(a, &times)?) };
     // The steps a reentrant call keeps, and the order of its first new step.

@@ -70,6 +70,14 @@ pub fn run_log(
             z.order,
             el.lumped[zi].iter().sum::<f64>()
         );
+        let (dead, null) = (el.dead[zi].len(), el.null[zi].len());
+        if dead + null > 0 {
+            let _ = writeln!(
+                s,
+                "                multipliers testing only prescribed jumps: {dead} component(s) removed, \
+                 {null} combination(s) of components kept at zero"
+            );
+        }
     }
     for (g, name) in su.xm.crack_names.iter().enumerate() {
         if !su.zones.iter().any(|z| z.crack == g) {

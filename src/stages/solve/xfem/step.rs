@@ -89,6 +89,10 @@ pub fn run(
                 }
             }
         }
+        // Multiplier directions that test no free jump: μ is kept orthogonal to them.
+        for v in el.null.iter().flatten() {
+            cons.relation(v.clone(), 0.0);
+        }
         if n == 1 {
             run.hm_report = hydr;
             run.pinned = pins;
