@@ -449,6 +449,7 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     }
     let mesh = r.model.model()?.current_mesh();
     let ndim = mesh.dim;
+    let sources = visual_cell_sources(&mesh, &vm);
     let mut steps = Vec::new();
     for st in &r.steps {
         let Some(Field::Node { components, values }) = st.fields.get("DEPL") else {
@@ -513,14 +514,121 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         }
         let mut fields = BTreeMap::new();
         fields.insert("DEPL".to_string(), Field::Node { components: out_comps, values: out });
+        // The point fields of an HM result, cell by cell (`xpoajc`, `xpoajm`).
+        if hm {
+            for name in ["SIEF_ELGA", "VARI_ELGA"] {
+                if let Some(Field::Elga { components, cells }) = st.fields.get(name) {
+                    let cells = elga_on_visual(&visu, &sources, &vm, cells, components.len())
+                        .map_err(|e| a.err("RESULTAT", format!("{name} at order {}: {e}", st.nume_ordre)))?;
+                    fields.insert(name.to_string(), Field::Elga { components: components.clone(), cells });
+                }
+            }
+        }
         steps.push(crate::concepts::result::Step { nume_ordre: st.nume_ordre, inst: st.inst, fields });
     }
+    // The material of each visual cell is its parent's: CALC_CHAMP on the result needs the elements.
+    let material = match &r.material {
+        Some(cm) => match &*cm.data() {
+            ConceptData::MaterialField(mf) => {
+                let cells = sources
+                    .iter()
+                    .map(|src| match src {
+                        CellSource::Classic(c) | CellSource::Sub { parent: c, .. } => {
+                            mf.cells.get(*c).cloned().flatten()
+                        }
+                        CellSource::Boundary => None,
+                    })
+                    .collect();
+                Some(crate::concepts::Concept::new(
+                    crate::concepts::ConceptKind::ChamMater,
+                    ConceptData::MaterialField(crate::concepts::model::MaterialField { mesh: vmesh.clone(), cells }),
+                ))
+            }
+            _ => None,
+        },
+        None => None,
+    };
     Ok(Some(ConceptData::Result(crate::concepts::result::ResultData {
         model: visu,
-        material: None,
+        material,
         loads: Vec::new(),
         steps,
     })))
+}
+
+/// Where a cell of the visual mesh comes from: a classic cell of the model, the `k`-th of `n` sub-cells
+/// of an X-FEM parent, or the cutting of a boundary parent (no point field).
+#[derive(Debug, Clone, Copy)]
+enum CellSource {
+    Classic(usize),
+    Sub { parent: usize, k: usize, n: usize },
+    Boundary,
+}
+
+/// The source of every cell of the visual mesh: the classic cells first (same names), then the sub-cells
+/// of each parent in order (`visual_mesh`).
+fn visual_cell_sources(mesh: &crate::mesh::Mesh, vm: &VisualMesh) -> Vec<CellSource> {
+    let nsub: usize = vm.parents.iter().map(|p| p.cell_counters.len()).sum();
+    let n_classic = vm.mesh.ncells() - nsub;
+    let by_name: std::collections::HashMap<&str, usize> =
+        mesh.cell_names.iter().enumerate().map(|(c, n)| (n.as_str(), c)).collect();
+    let mut out: Vec<CellSource> = (0..n_classic)
+        .map(|v| by_name.get(vm.mesh.cell_names[v].as_str()).map_or(CellSource::Boundary, |&c| CellSource::Classic(c)))
+        .collect();
+    for p in &vm.parents {
+        let n = p.cell_counters.len();
+        let bulk = mesh.cell_types[p.cell].dim() == mesh.dim;
+        out.extend((0..n).map(|k| if bulk { CellSource::Sub { parent: p.cell, k, n } } else { CellSource::Boundary }));
+    }
+    out
+}
+
+/// A point field of the model's cells on the visual cells: a classic cell keeps its values; a sub-cell
+/// gets, on every point of its visual element, the mean of its own points in the parent (`xpoajc`).
+fn elga_on_visual(
+    visu: &crate::concepts::ConceptRef,
+    sources: &[CellSource],
+    vm: &VisualMesh,
+    cells: &[Option<Vec<f64>>],
+    nc: usize,
+) -> std::result::Result<Vec<Option<Vec<f64>>>, String> {
+    let vmodel = visu.model().map_err(|e| e.msg)?;
+    let mut out = vec![None; vm.mesh.ncells()];
+    for (v, src) in sources.iter().enumerate() {
+        let Some(e) = vmodel.elements.get(v).and_then(|e| e.as_ref()) else { continue };
+        if vm.mesh.cell_types[v].dim() < vm.mesh.dim {
+            continue; // skin elements hold no point field
+        }
+        let npg2 = crate::stages::core::hm::elga_points(e.modelisation, vm.mesh.cell_types[v])?;
+        match *src {
+            CellSource::Classic(c) => {
+                if let Some(vals) = cells.get(c).and_then(|x| x.as_ref()) {
+                    if vals.len() != npg2 * nc {
+                        return Err(format!(
+                            "cell {} has {} values, {npg2} points of {nc} components expected",
+                            vm.mesh.cell_names[v],
+                            vals.len()
+                        ));
+                    }
+                    out[v] = Some(vals.clone());
+                }
+            }
+            CellSource::Sub { parent, k, n } => {
+                let Some(vals) = cells.get(parent).and_then(|x| x.as_ref()) else { continue };
+                let npts = vals.len() / nc;
+                if !npts.is_multiple_of(n) {
+                    return Err(format!("{npts} points for {n} sub-cells in the parent of {}", vm.mesh.cell_names[v]));
+                }
+                let npg1 = npts / n;
+                let mean: Vec<f64> = (0..nc)
+                    .map(|q| (0..npg1).map(|g| vals[(k * npg1 + g) * nc + q]).sum::<f64>() / npg1 as f64)
+                    .collect();
+                out[v] = Some((0..npg2).flat_map(|_| mean.iter().copied()).collect());
+            }
+            CellSource::Boundary => {}
+        }
+    }
+    Ok(out)
 }
 
 /// The displacement (and the linear pressure) at reference point `xi` of

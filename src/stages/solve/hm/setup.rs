@@ -107,7 +107,17 @@ pub fn loads_at(
                         a.err("EXCIT", format!("load {name}: {component} is not an unknown of a {} model", p.modelling))
                     })?;
                     match num.dof(*node, k) {
-                        Some(d) => cons.impose(d, mult * load_value(value, &mesh.coords[*node], t)?),
+                        Some(d) => {
+                            let v = mult * load_value(value, &mesh.coords[*node], t)?;
+                            match enriched_condition(p, items, *node, component, d) {
+                                Some(relations) => {
+                                    for terms in relations {
+                                        cons.relation(terms, v);
+                                    }
+                                }
+                                None => cons.impose(d, v),
+                            }
+                        }
                         // A middle node carries no pressure, a node outside the interface's reach no Heaviside
                         // unknown: Code_Aster passes over them (afddli).
                         None if (p.is_pressure(k) || p.xfem.is_some() && component.starts_with('H'))
@@ -259,6 +269,71 @@ pub fn loads_at(
         }
     }
     Ok((cons, f))
+}
+
+/// DDL_IMPO of a standard component (DX DY DZ PRE1) on a node of an X-FEM model with Heaviside sets,
+/// as `xddlim` prescribes it: the whole field on the node's side, std + Σ ψ h = value. Off the interface
+/// ψ vanishes on the node's own side, so the standard unknown alone is prescribed (None). On it (a single
+/// interface with the level set zero at the node) the sides where the load's other nodes lie, among the
+/// cells holding the node: one relation per side (both when they lie on both, or none of them does).
+/// `d` is the node's standard unknown of the component.
+fn enriched_condition(
+    p: &HmProblem,
+    items: &[LoadItem],
+    n: usize,
+    component: &str,
+    d: usize,
+) -> Option<Vec<Vec<(usize, f64)>>> {
+    let xm = p.xfem.as_ref()?;
+    if xm.node_sets[n].is_empty() || xm.lsn.len() != 1 || xm.lsn[0][n] != 0.0 {
+        return None;
+    }
+    let (mesh, num) = (&p.mesh, &p.numbering);
+    let lsn = &xm.lsn[0];
+    let same: std::collections::BTreeSet<usize> = items
+        .iter()
+        .filter_map(|it| match it {
+            LoadItem::Dof { node, component: c, .. } if c == component => Some(*node),
+            _ => None,
+        })
+        .collect();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for (c, nodes) in mesh.cells.iter().enumerate() {
+        if p.cells.get(c).is_none_or(|x| x.is_none()) || !nodes.contains(&n) {
+            continue;
+        }
+        for &m in nodes.iter().filter(|m| same.contains(m)) {
+            lo = lo.min(lsn[m]);
+            hi = hi.max(lsn[m]);
+        }
+    }
+    let sides: Vec<i32> = if lo == 0.0 && hi > 0.0 {
+        vec![1]
+    } else if lo < 0.0 && hi == 0.0 {
+        vec![-1]
+    } else if (lo < 0.0 && hi > 0.0) || same.len() <= 1 {
+        vec![1, -1]
+    } else {
+        return Some(Vec::new()); // an isolated node: Code_Aster prescribes nothing there
+    };
+    let suffix = component.strip_prefix('D').unwrap_or(component);
+    Some(
+        sides
+            .into_iter()
+            .map(|side| {
+                let region = crate::xfem::region_code(&[side]);
+                let mut terms = vec![(d, 1.0)];
+                for j in 0..xm.node_sets[n].len() {
+                    let psi = xm.psi(n, j, region);
+                    let hc = format!("H{}{suffix}", j + 1);
+                    if let Some(hd) = num.component(&hc).and_then(|k| num.dof(n, k)).filter(|_| psi != 0.0) {
+                        terms.push((hd, psi));
+                    }
+                }
+                terms
+            })
+            .collect(),
+    )
 }
 
 /// The Heaviside parts of a load on a skin cell of an X-FEM model: `fe`, the standard nodal values
