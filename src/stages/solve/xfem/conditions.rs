@@ -136,8 +136,9 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Co
                         "EXCIT",
                         format!(
                             "load {}: only DDL_IMPO, PRES_REP with FISSURE and PESANTEUR are supported yet on an X-FEM \
-                             model with cohesive interfaces or without flow",
-                            lc.label()
+                             model{}",
+                            lc.label(),
+                            if s.hm { " with cohesive interfaces or with every hydraulic unknown prescribed" } else { "" }
                         ),
                     ));
                 }
