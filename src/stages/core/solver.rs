@@ -47,6 +47,10 @@ pub fn solveur(a: &Args) -> Result<Solveur> {
         if let Some(r) = s.real("RESI_RELA") {
             opts.resi_rela = r;
         }
+        // LDLT and MULT_FRONT have no RESI_RELA: Code_Aster checks no residual after them (NPREC only).
+        if matches!(methode.as_str(), "LDLT" | "MULT_FRONT") {
+            opts.resi_rela = -1.0;
+        }
         s.read_all();
     }
     opts.ordering = match renum.as_str() {

@@ -196,13 +196,20 @@ pub fn loads_at(
                         };
                         let fe = elasticity::boundary_force(md, mesh.cell_types[c], &coords_of(mesh, c), &fx)
                             .map_err(|e| Error::runtime(e.to_string()).at(a.span))?;
-                        if let Some(e) = err.into_inner() {
+                        let pending = err.borrow_mut().take();
+                        if let Some(e) = pending {
                             return Err(e.at(a.span));
                         }
-                        for (d, v) in dofs.iter().zip(&fe) {
-                            f[*d] += v;
+                        let density = |x: &[f64; 3], nr: &[f64; 3], _: &[f64]| fx(x, nr);
+                        if !add_enriched(a, p, c, &fe, Density::Traction(&density), &mut f)? {
+                            for (d, v) in dofs.iter().zip(&fe) {
+                                f[*d] += v;
+                            }
                         }
-                        add_enriched(a, p, c, &fe, dim, &mut f)?;
+                        let pending = err.borrow_mut().take();
+                        if let Some(e) = pending {
+                            return Err(e.at(a.span));
+                        }
                     }
                 }
                 LoadItem::Pressure { cells, value } => {
@@ -213,10 +220,28 @@ pub fn loads_at(
                             xs.iter().map(|x| load_value(value, x, t).map(|v| v * mult)).collect::<Result<_>>()?;
                         let fe = elasticity::pressure_force(md, mesh.cell_types[c], &xs, &pres, None)
                             .map_err(|e| Error::runtime(e.to_string()).at(a.span))?;
-                        for (d, v) in dofs.iter().zip(&fe) {
-                            f[*d] += v;
+                        // On a cell an interface crosses, the pressure at each point of each side (a function
+                        // may jump across the interface); elsewhere the nodal values, as `pressure_force`.
+                        let err = std::cell::RefCell::new(None);
+                        let density = |x: &[f64; 3], nr: &[f64; 3], _: &[f64]| {
+                            let pv = match load_value(value, x, t) {
+                                Ok(v) => v * mult,
+                                Err(e) => {
+                                    *err.borrow_mut() = Some(e);
+                                    0.0
+                                }
+                            };
+                            nr.map(|v| -v * pv)
+                        };
+                        if !add_enriched(a, p, c, &fe, Density::Traction(&density), &mut f)? {
+                            for (d, v) in dofs.iter().zip(&fe) {
+                                f[*d] += v;
+                            }
                         }
-                        add_enriched(a, p, c, &fe, dim, &mut f)?;
+                        let pending = err.borrow_mut().take();
+                        if let Some(e) = pending {
+                            return Err(e.at(a.span));
+                        }
                     }
                 }
                 LoadItem::FluxThm { cells, value } => {
@@ -233,17 +258,23 @@ pub fn loads_at(
                         };
                         let fe = flux_load(p.kin, t_c, &coords_of(mesh, c), dt, &q)
                             .map_err(|e| a.err("EXCIT", format!("load {name}: cell {}: {e}", mesh.cell_names[c])))?;
-                        if let Some(e) = err.into_inner() {
+                        let pending = err.borrow_mut().take();
+                        if let Some(e) = pending {
                             return Err(e.at(a.span));
                         }
-                        for (k, v) in fe.iter().enumerate() {
-                            let n = mesh.cells[c][k];
-                            let d = num.dof(n, p.pre1).ok_or_else(|| {
-                                a.err("EXCIT", format!("load {name}: node {} carries no PRE1", node_name(n)))
-                            })?;
-                            f[d] += v;
+                        if !add_enriched(a, p, c, &fe, Density::Flux(&q, dt), &mut f)? {
+                            for (k, v) in fe.iter().enumerate() {
+                                let n = mesh.cells[c][k];
+                                let d = num.dof(n, p.pre1).ok_or_else(|| {
+                                    a.err("EXCIT", format!("load {name}: node {} carries no PRE1", node_name(n)))
+                                })?;
+                                f[d] += v;
+                            }
                         }
-                        add_enriched(a, p, c, &fe, 0, &mut f)?;
+                        let pending = err.borrow_mut().take();
+                        if let Some(e) = pending {
+                            return Err(e.at(a.span));
+                        }
                     }
                 }
                 LoadItem::Gravity { g, direction, cells } => {
@@ -336,50 +367,185 @@ fn enriched_condition(
     )
 }
 
-/// The Heaviside parts of a load on a skin cell of an X-FEM model: `fe`, the standard nodal values
-/// (`width` components per node: the displacements; 0 for one pressure value per vertex), times ψ of
-/// each enrichment set of the cell's nodes on the cell's side, on the set's unknowns. A skin cell the
-/// interface crosses is refused (its integrals would need its cutting).
-fn add_enriched(a: &Args, p: &HmProblem, c: usize, fe: &[f64], width: usize, f: &mut [f64]) -> Result<()> {
-    let Some(xm) = &p.xfem else { return Ok(()) };
+/// A traction at a point of a skin cell, from the point, the unit normal and the cell's functions there.
+type Traction<'a> = dyn Fn(&[f64; 3], &[f64; 3], &[f64]) -> [f64; 3] + 'a;
+
+/// What a load puts on a skin cell, per unit measure: a traction (from the point, the unit normal and the
+/// cell's shape functions there), or a fluid mass flux over a step `dt` (on the pressures, `−Δt q N̂`).
+enum Density<'a> {
+    Traction(&'a Traction<'a>),
+    Flux(&'a dyn Fn(&[f64; 3]) -> f64, f64),
+}
+
+/// The Heaviside parts of a load on a skin cell of an X-FEM model, on the sets' unknowns. On a cell the
+/// interface does not cross, ψ is constant: `fe` (the standard nodal values, `dim` per node for a
+/// traction, one per vertex for a flux) times ψ of each set on the cell's side; the caller adds `fe`
+/// itself (false). On a cell it crosses, the whole load — standard and Heaviside parts — is integrated
+/// over the sub-cells of the cell's cutting (`xm.boundary`), each on its side (true).
+fn add_enriched(a: &Args, p: &HmProblem, c: usize, fe: &[f64], density: Density, f: &mut [f64]) -> Result<bool> {
+    let Some(xm) = &p.xfem else { return Ok(false) };
     let (mesh, num) = (&p.mesh, &p.numbering);
     let nodes = &mesh.cells[c];
     if nodes.iter().all(|&n| xm.node_sets[n].is_empty()) {
-        return Ok(());
+        return Ok(false);
     }
-    if xm.lsn.iter().any(|l| nodes.iter().any(|&n| l[n] > 0.0) && nodes.iter().any(|&n| l[n] < 0.0)) {
+    let dim = p.kin.dim();
+    let xyz = ["X", "Y", "Z"];
+    // The unknown of set j of node n for component i (a pressure for a flux).
+    let set_dof = |n: usize, j: usize, i: Option<usize>| {
+        let comp = match i {
+            Some(i) => format!("H{}{}", j + 1, xyz[i]),
+            None => format!("H{}PRE1", j + 1),
+        };
+        num.component(&comp).and_then(|k| num.dof(n, k))
+    };
+    // The standard unknown of node n for component i (PRE1 for a flux).
+    let std_dof = |n: usize, i: Option<usize>| num.dof(n, i.unwrap_or(p.pre1));
+    let t = mesh.cell_types[c];
+    let cut = xm.lsn.iter().any(|l| nodes.iter().any(|&n| l[n] > 0.0) && nodes.iter().any(|&n| l[n] < 0.0));
+    if !cut {
+        let ff = crate::fem::reference::shape(t, &crate::fem::reference::ref_centroid(t));
+        let region =
+            crate::xfem::region_code(&crate::xfem::model::point_signs(&xm.lsn, &xm.masters, nodes, &ff, &[], &[]));
+        for (a_n, &n) in nodes.iter().enumerate() {
+            for j in 0..xm.node_sets[n].len() {
+                let psi = xm.psi(n, j, region);
+                if psi == 0.0 {
+                    continue;
+                }
+                match density {
+                    Density::Traction(_) => {
+                        for i in 0..dim {
+                            if let Some(d) = set_dof(n, j, Some(i)) {
+                                f[d] += psi * fe[a_n * dim + i];
+                            }
+                        }
+                    }
+                    Density::Flux(..) => {
+                        if let (Some(d), Some(v)) = (set_dof(n, j, None), fe.get(a_n)) {
+                            f[d] += psi * v;
+                        }
+                    }
+                }
+            }
+        }
+        return Ok(false);
+    }
+    let Some((cracks, cutting)) = xm.boundary.get(&c) else {
         return Err(a.err(
             "EXCIT",
-            format!(
-                "a load on boundary cell {}, which an X-FEM interface crosses, is not supported yet with coupled flow",
-                mesh.cell_names[c]
-            ),
+            format!("boundary cell {}: an X-FEM interface crosses it but it has no cutting", mesh.cell_names[c]),
         ));
-    }
-    let t = mesh.cell_types[c];
-    let ff = crate::fem::reference::shape(t, &crate::fem::reference::ref_centroid(t));
-    let signs = crate::xfem::model::point_signs(&xm.lsn, &xm.masters, nodes, &ff, &[], &[]);
-    let region = crate::xfem::region_code(&signs);
-    let xyz = ["X", "Y", "Z"];
-    for (a_n, &n) in nodes.iter().enumerate() {
-        for j in 0..xm.node_sets[n].len() {
-            let psi = xm.psi(n, j, region);
-            if psi == 0.0 {
-                continue;
+    };
+    let coords = crate::stages::core::problem::coords_of(mesh, c);
+    let tdim = t.dim();
+    let nno = t.nnodes();
+    let tv = crate::fem::elasticity::vertex_type(t);
+    let rule = if tdim == 1 {
+        crate::fem::quadrature::gauss_legendre(4)
+    } else {
+        crate::fem::quadrature::rule_for_degree(crate::fem::quadrature::RefDomain::Triangle, 6)
+    };
+    for sc in &cutting.subcells {
+        use crate::mesh::CellType;
+        let st = match (tdim, sc.nodes.len()) {
+            (1, 2) => CellType::Seg2,
+            (1, _) => CellType::Seg3,
+            (_, 3) => CellType::Tria3,
+            _ => CellType::Tria6,
+        };
+        let xis: Vec<[f64; 3]> = sc.nodes.iter().map(|&q| cutting.points[q].xi).collect();
+        // The sub-cell's side: the signs at its centroid, with its Heaviside values for the cell's cracks.
+        let nv = tdim + 1;
+        let mut xc = [0.0; 3];
+        for xi in &xis[..nv] {
+            for k in 0..3 {
+                xc[k] += xi[k] / nv as f64;
             }
-            let targets: Vec<(String, f64)> = if width == 0 {
-                fe.get(a_n).map(|v| vec![(format!("H{}PRE1", j + 1), *v)]).unwrap_or_default()
+        }
+        let ffc = crate::fem::reference::shape(t, &xc);
+        let region = crate::xfem::region_code(&crate::xfem::model::point_signs(
+            &xm.lsn,
+            &xm.masters,
+            nodes,
+            &ffc,
+            cracks,
+            &sc.he,
+        ));
+        let mut ns = vec![0.0; st.nnodes()];
+        let mut ds = vec![[0.0; 3]; st.nnodes()];
+        let mut n = vec![0.0; nno];
+        let mut dref = vec![[0.0; 3]; nno];
+        for (q, wq) in rule.points.iter().zip(&rule.weights) {
+            crate::fem::reference::shape_and_deriv(st, q, &mut ns, &mut ds);
+            // The point in the parent's reference, and the sub-cell map's Jacobian there.
+            let mut xi = [0.0; 3];
+            let mut js = [[0.0; 3]; 3];
+            for (k, xk) in xis.iter().enumerate() {
+                for r in 0..tdim {
+                    xi[r] += ns[k] * xk[r];
+                    for s_ in 0..tdim {
+                        js[r][s_] += xk[r] * ds[k][s_];
+                    }
+                }
+            }
+            let det_s = if tdim == 1 { js[0][0].abs() } else { (js[0][0] * js[1][1] - js[0][1] * js[1][0]).abs() };
+            crate::fem::reference::shape_and_deriv(t, &xi, &mut n, &mut dref);
+            let (mut x, mut t1, mut t2) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+            for k in 0..nno {
+                for i in 0..3 {
+                    x[i] += n[k] * coords[k][i];
+                    t1[i] += dref[k][0] * coords[k][i];
+                    t2[i] += dref[k][1] * coords[k][i];
+                }
+            }
+            let (jac, normal) = if tdim == 1 {
+                let l = (t1[0] * t1[0] + t1[1] * t1[1]).sqrt();
+                (l, [t1[1] / l, -t1[0] / l, 0.0])
             } else {
-                (0..width).map(|i| (format!("H{}{}", j + 1, xyz[i]), fe[a_n * width + i])).collect()
+                let cr = [t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]];
+                let l = (cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]).sqrt();
+                (l, cr.map(|v| v / l))
             };
-            for (comp, v) in targets {
-                if let Some(d) = num.component(&comp).and_then(|k| num.dof(n, k)) {
-                    f[d] += psi * v;
+            let w = wq * det_s * jac;
+            match density {
+                Density::Traction(g) => {
+                    let tr = g(&x, &normal, &n);
+                    for (a_n, &node) in nodes.iter().enumerate() {
+                        for (i, tri) in tr.iter().enumerate().take(dim) {
+                            if let Some(d) = std_dof(node, Some(i)) {
+                                f[d] += w * n[a_n] * tri;
+                            }
+                        }
+                        for j in 0..xm.node_sets[node].len() {
+                            let psi = xm.psi(node, j, region);
+                            for (i, tri) in tr.iter().enumerate().take(dim) {
+                                if let Some(d) = set_dof(node, j, Some(i)).filter(|_| psi != 0.0) {
+                                    f[d] += w * psi * n[a_n] * tri;
+                                }
+                            }
+                        }
+                    }
+                }
+                Density::Flux(qf, dt) => {
+                    let nh = crate::fem::reference::shape(tv, &xi);
+                    let qv = qf(&x);
+                    for (a_n, &node) in nodes.iter().enumerate().take(tv.nnodes()) {
+                        if let Some(d) = std_dof(node, None) {
+                            f[d] -= dt * w * nh[a_n] * qv;
+                        }
+                        for j in 0..xm.node_sets[node].len() {
+                            let psi = xm.psi(node, j, region);
+                            if let Some(d) = set_dof(node, j, None).filter(|_| psi != 0.0) {
+                                f[d] -= dt * w * psi * nh[a_n] * qv;
+                            }
+                        }
+                    }
                 }
             }
         }
     }
-    Ok(())
+    Ok(true)
 }
 
 /// The fluid's gravity of a cell at `t`: THM_DIFFU PESA_X/Y/Z × PESA_MULT(t).
