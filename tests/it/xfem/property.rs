@@ -271,7 +271,7 @@ fn run(types: &[CellType], cases: usize, tag: &str, tol: Tolerance) {
     let mut failures = Vec::new();
     let mut worst = 0.0f64;
     let mut worst_cut = String::new();
-    let (mut count, mut skipped) = (0, 0);
+    let (mut count, mut skipped, mut along) = (0, 0, 0);
     let meshes: Vec<(PathBuf, Vec<[f64; 3]>)> = types.iter().map(|&t| mesh(&dir, t)).collect();
     let mut i = 0;
     while count < cases {
@@ -283,6 +283,7 @@ fn run(types: &[CellType], cases: usize, tag: &str, tol: Tolerance) {
             skipped += 1;
             continue;
         };
+        along += usize::from(class == Class::AlongRow);
         let comm = dir.join(format!("cut{i}.comm"));
         std::fs::write(&comm, scene(dim, &phi, tol)).unwrap();
         let out = dir.join(format!("cut{i}"));
@@ -318,8 +319,8 @@ fn run(types: &[CellType], cases: usize, tag: &str, tol: Tolerance) {
     let _ = std::fs::remove_dir_all(&dir);
     let names: Vec<&str> = types.iter().map(|t| t.name()).collect();
     println!(
-        "seed {seed}: {count} cuts on {} in {:.1} s ({skipped} drawn in skipped classes), {} failing, worst node \
-         error {worst:.2e}·U ({worst_cut})",
+        "seed {seed}: {count} cuts on {} in {:.1} s ({along} along a row or plane of nodes, {skipped} drawn in \
+         skipped classes), {} failing, worst node error {worst:.2e}·U ({worst_cut})",
         names.join("/"),
         start.elapsed().as_secs_f64(),
         failures.len()
