@@ -368,7 +368,8 @@ fn random_straight_interfaces_everywhere() {
 /// middle of the box, exactly, and 1e-7·h, 1e-9·h and 1e-14·h from it, which
 /// xajuls snaps onto it — cuts no cell: its facets are the faces on the level
 /// set of the cells on its − side, with one multiplier packet per vertex of the
-/// row (Code_Aster's `xtyele` / `xcface` / `xlagsp`). Before, its Heaviside sets
+/// row (Code_Aster's `xtyele` / `xcface` / `xlagsp`); an interface that follows
+/// the row over half its length and then cuts cells mixes both. Before, its Heaviside sets
 /// separated the sides with no facet to glue them and the run stopped by name.
 /// Every cell type, every node of the mesh and of the visual mesh to 1e-8·U.
 #[test]
@@ -377,7 +378,8 @@ fn an_interface_along_a_row_of_nodes_is_glued() {
     for t in [CellType::Quad8, CellType::Quad4, CellType::Hexa20, CellType::Hexa8] {
         let dim = if matches!(t, CellType::Quad4 | CellType::Quad8) { 2 } else { 3 };
         let (path, _) = mesh(&dir, t);
-        for phi in ["X-1.0", "X-1.0-1.0e-7", "X-1.0+1.0e-9", "X-1.0-1.0e-14"] {
+        // Along the row, near it, and along it over half its length then across cells (a kink).
+        for phi in ["X-1.0", "X-1.0-1.0e-7", "X-1.0+1.0e-9", "X-1.0-1.0e-14", "X-1.0-0.5*max(0.0, Y-1.0)"] {
             let comm = dir.join("row.comm");
             std::fs::write(&comm, scene(dim, phi, 1e-8)).unwrap();
             let opts =
