@@ -26,6 +26,19 @@
 //! edge is listed once, with the end order and the point of its first
 //! occurrence.
 //!
+//! # An interface along a row or plane of nodes
+//!
+//! When φ vanishes on a whole edge (2D) or face (3D) of cells it does not cut
+//! (an interface along mesh nodes, or snapped onto them by `xajuls`), the
+//! cells on its − side (maximum of φ over the vertices 0) are contact cells
+//! (`xtyele` above), and `xcface` takes the vertices of that edge or face as
+//! their intersection points (its `arete` case, `ia = 0`; a cell on the + side
+//! gets none). `xlagsp` lists no edge for them, so each such vertex is a packet
+//! of its own, with no relation ([`cut_edges`]' vertex points), and the facets
+//! are the cells' faces on the level set, seen from the − side
+//! (`discrete::facets`). The two sides are then coupled by the same mortar
+//! terms as across a cut cell.
+//!
 //! # Vital edges (`xrell2`, algorithm 2)
 //!
 //! Each listed edge gets a criterion: the distance from its point to the
@@ -93,7 +106,7 @@ fn near(a: f64, reference: f64) -> bool {
 
 /// Does the cell make a face of vertices on the level set (the `maxlsn = 0`
 /// case of `xtyele`)? `on` = number of vertices with φ = 0 whose
-/// neighbourhood reaches φ > 0.
+/// neighbourhood reaches φ > 0 (`xtyele` counts the vertices, `panbno`).
 fn face_on_level_set(mesh: &Mesh, cell: usize, lsn: &[f64], support: &[Vec<usize>]) -> bool {
     use crate::mesh::CellType::*;
     let t = mesh.cell_types[cell];
@@ -264,8 +277,10 @@ pub fn cut_edges(mesh: &Mesh, cells: &[usize], lsn: &[f64], master: Option<(&[f6
         let nodes = &mesh.cells[cell];
         let nv = t.nvertices();
         let (lo, hi) = nodes[..nv].iter().fold((f64::MAX, -f64::MAX), |(l, h), &n| (l.min(lsn[n]), h.max(lsn[n])));
-        if lo * hi >= 0.0 {
-            // No sign change over the cell: no facet crosses it.
+        // A contact cell is cut (φ of both signs) or lies on the − side with a whole face on the level
+        // set (`xtyele`'s maxlsn = 0 case): `xcface` then takes that face's vertices as its points
+        // (`arete`, ia = 0); a cell with no vertex below zero carries no facet.
+        if !(lo < 0.0 && hi >= 0.0) {
             continue;
         }
         for &v in &nodes[..nv] {
@@ -482,6 +497,28 @@ mod tests {
         let p = vital_edges(&edges);
         assert_eq!(p.vital, vec![(0, 1), (2, 3)]);
         assert_eq!(p.packets, vec![vec![0, 1], vec![2, 3]]);
+    }
+
+    #[test]
+    fn an_edge_on_the_level_set_gives_vertex_points_on_its_minus_side_only() {
+        // 2×2 QUAD4 box, φ = X − 1: the middle column of nodes is on the level set, no edge is cut.
+        let mesh = crate::mesh::generate::box_mesh(crate::mesh::CellType::Quad4, &[2, 2], &[2.0, 2.0]).unwrap();
+        let lsn: Vec<f64> = mesh.coords.iter().map(|x| x[0] - 1.0).collect();
+        let quads: Vec<usize> =
+            (0..mesh.cells.len()).filter(|&c| mesh.cell_types[c] == crate::mesh::CellType::Quad4).collect();
+        let (minus, plus): (Vec<usize>, Vec<usize>) =
+            quads.iter().partition(|&&c| mesh.cells[c].iter().all(|&n| lsn[n] <= 0.0));
+        assert_eq!((minus.len(), plus.len()), (2, 2));
+        let on_row = |e: &CutEdge| e.a == e.b && lsn[e.a] == 0.0;
+        let edges = cut_edges(&mesh, &minus, &lsn, None);
+        assert_eq!(edges.len(), 3, "{edges:?}");
+        assert!(edges.iter().all(on_row));
+        // Each vertex of the row is a packet of its own, with no vital edge.
+        let p = vital_edges(&edges);
+        assert!(p.vital.is_empty());
+        assert_eq!(p.packets.len(), 3);
+        // The + side carries no facet, hence no point.
+        assert!(cut_edges(&mesh, &plus, &lsn, None).is_empty());
     }
 
     #[test]

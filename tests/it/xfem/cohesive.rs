@@ -4,7 +4,9 @@
 //! threshold is passed, vanishes at δc, and the energy dissipated is GC
 //! times the interface length; pushed shut, the opening is exactly zero and
 //! the traction is the bulk stress. The numbers come from STAT_NON_LINE's
-//! per-step interface report in the message file.
+//! per-step interface report in the message file. The pull is repeated on a
+//! column of two cells whose common edge is the interface (along a row of
+//! nodes: no cell cut).
 
 use std::path::Path;
 use std::process::Command;
@@ -13,12 +15,12 @@ const SIGMA_C: f64 = 5.0e5;
 const GC: f64 = 9.0e3;
 const E: f64 = 5.8e9;
 
-fn scene(delta: f64, instants: &str) -> String {
+fn scene(ln: &str, delta: f64, instants: &str) -> String {
     format!(
         r#"DEBUT(CODE="OUI")
 MA = LIRE_MAILLAGE(FORMAT="MED", UNITE=20)
 MO0 = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT="OUI", PHENOMENE="MECANIQUE", MODELISATION="D_PLAN"))
-LN = FORMULE(VALE="Y-0.3", NOM_PARA=["X", "Y"])
+LN = FORMULE(VALE="{ln}", NOM_PARA=["X", "Y"])
 FISS = DEFI_FISS_XFEM(MAILLAGE=MA, TYPE_DISCONTINUITE="INTERFACE", DEFI_FISS=_F(FONC_LN=LN))
 MO = MODI_MODELE_XFEM(MODELE_IN=MO0, FISSURE=FISS, DECOUPE_FACETTE="SOUS_ELEMENTS", CONTACT="MORTAR")
 CTX = DEFI_CONTACT(MODELE=MO, FORMULATION="XFEM", ZONE=_F(FISS_MAIT=FISS, INTEGRATION="GAUSS", ORDRE_INT=2,
@@ -37,19 +39,25 @@ FIN()
     )
 }
 
-/// Run the scene; returns, per step, (λ_n min, λ_n max, w_n min, w_n max, dissipated).
+/// Run the scene on one 1×1 QUAD8 cell cut by Y = 0.3; returns, per step, (λ_n min, λ_n max, w_n min,
+/// w_n max, dissipated).
 fn run(tag: &str, delta: f64, instants: &str) -> Vec<[f64; 5]> {
+    run_on(tag, ("1,1", "1,1"), "Y-0.3", delta, instants)
+}
+
+/// Run the scene on a QUAD8 box (`--n`, `--size`) with the level set `ln`.
+fn run_on(tag: &str, (n, size): (&str, &str), ln: &str, delta: f64, instants: &str) -> Vec<[f64; 5]> {
     let dir = scratch!(tag);
     let exe = env!("CARGO_BIN_EXE_aster");
     let mesh = dir.join("one.med");
     let o = Command::new(exe)
-        .args(["mesh", "box", "--cell", "QUAD8", "--n", "1,1", "--size", "1,1", "-o"])
+        .args(["mesh", "box", "--cell", "QUAD8", "--n", n, "--size", size, "-o"])
         .arg(&mesh)
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let comm = dir.join("one.comm");
-    std::fs::write(&comm, scene(delta, instants)).unwrap();
+    std::fs::write(&comm, scene(ln, delta, instants)).unwrap();
     let o = Command::new(exe)
         .arg("run")
         .arg(&comm)
@@ -88,11 +96,34 @@ fn opening_follows_the_linear_softening_law_and_dissipates_gc() {
     let delta_c = 2.0 * GC / SIGMA_C;
     // Fine steps up to just past the threshold, then to 1.25 δc.
     let steps = run("open", 1.25 * delta_c, "_F(JUSQU_A=0.002, NOMBRE=4), _F(JUSQU_A=1.0, NOMBRE=45)");
+    check_opening(&steps);
+}
+
+/// The same pull on a column of two QUAD8 cells whose common edge Y = 0.5 is the interface: no cell is
+/// cut, the lower cell carries the facet and the edge's two vertices one packet each (as Code_Aster's
+/// `xcface` / `xlagsp` do for an interface along a row of nodes). The law and the energy are the same.
+#[test]
+fn opening_along_a_row_of_nodes_follows_the_same_law() {
+    let delta_c = 2.0 * GC / SIGMA_C;
+    let steps = run_on(
+        "open_row",
+        ("1,2", "1,1"),
+        "Y-0.5",
+        1.25 * delta_c,
+        "_F(JUSQU_A=0.002, NOMBRE=4), _F(JUSQU_A=1.0, NOMBRE=45)",
+    );
+    check_opening(&steps);
+}
+
+/// The checks of a pull to 1.25 δc in 49 steps: rigid below σc, the softening line, no traction after
+/// separation, GC dissipated (length 1).
+fn check_opening(steps: &[[f64; 5]]) {
+    let delta_c = 2.0 * GC / SIGMA_C;
     assert_eq!(steps.len(), 49);
     let mut opened = 0;
     let mut work = 0.0;
     let (mut w_prev, mut l_prev) = (0.0, 0.0);
-    for s in &steps {
+    for s in steps {
         let [l0, l1, w0, w1, _] = *s;
         // Uniform opening: both packets (left and right edges) agree.
         assert!((l1 - l0).abs() <= 1e-9 * SIGMA_C && (w1 - w0).abs() <= 1e-12, "{s:?}");
@@ -136,7 +167,7 @@ fn the_test_scene_is_well_formed() {
     // The scene text itself passes the catalogue (guards the two tests above).
     let dir = scratch!("check");
     let comm = dir.join("one.comm");
-    std::fs::write(&comm, scene(1e-3, "_F(JUSQU_A=1.0, NOMBRE=1)")).unwrap();
+    std::fs::write(&comm, scene("Y-0.3", 1e-3, "_F(JUSQU_A=1.0, NOMBRE=1)")).unwrap();
     let o = Command::new(env!("CARGO_BIN_EXE_aster")).arg("check").arg(&comm).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stdout));
     let _ = std::fs::remove_dir_all(Path::new(&dir));

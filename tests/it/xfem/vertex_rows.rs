@@ -60,3 +60,21 @@ fn hexa20_at_1e_3_and_1e_4_from_a_vertex_row() {
 fn hexa20_through_and_next_to_a_vertex_row() {
     run_scene("vertex_row_3d_degenerate", 72, 1.0);
 }
+
+/// QUAD8 cells of size 2, FISS1 along the row of nodes Y = 4 (vertices and
+/// mid-side nodes), at 1e-9·h from it and exactly on it, FISS2 branching on
+/// it: no cell is cut, the cells below the row carry the facets (one packet
+/// per vertex of the row). 2 distances × 2 results × 2 components × max and
+/// min × 2 lines.
+#[test]
+fn quad8_along_a_row_of_nodes() {
+    run_scene("vertex_row_2d_through", 32, 1.0e-4);
+}
+
+/// HEXA20 cells of size 2, FISS1 along the plane of nodes Z = 4, at 1e-9·h
+/// from it and exactly on it, FISS2 branching on it: 2 distances × 2 results
+/// × 3 components × max and min × 2 lines.
+#[test]
+fn hexa20_along_a_plane_of_nodes() {
+    run_scene("vertex_row_3d_through", 48, 1.0);
+}

@@ -82,14 +82,14 @@ pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> R
         let rule = discrete::facet_rule(ndim, z.order).map_err(|e| a.err("CONTACT", e))?;
         let facets = discrete::facets(mesh, xm, z.crack, 1e-9 * lonref);
         // Heaviside sets with no facet to couple the sides they separate:
-        // the interface would open freely where the scene glues it.
+        // the interface would open freely where the scene glues it. An interface along a row or plane of
+        // nodes has its facets on the cells of its − side; none is left when those are not in the model.
         if facets.is_empty() || z.packets.is_empty() {
             return Err(a.err(
                 "CONTACT",
                 format!(
-                    "{}: the interface has no facet: its level set vanishes on whole edges or faces of cells it \
-                     does not cut (an interface along a row or plane of nodes, or within ~1e-6 of an edge's jump of \
-                     one, which xajuls puts on it); coupling its sides there is not supported",
+                    "{}: the interface has no facet: no cell of the model is cut by it or lies on its − side \
+                     with a whole edge or face on it",
                     xm.crack_names[z.crack]
                 ),
             ));
