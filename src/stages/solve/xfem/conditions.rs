@@ -176,17 +176,9 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Co
                 let v = mult * load_value(value, &mesh.coords[n], t)?;
                 match blocks[n].as_slice() {
                     [(zi, k)] => cons.impose(xd.packets[s.zones[*zi].crack][*k] + u * ndim + q, v),
-                    [] => {
-                        return Err(a.err(
-                            "EXCIT",
-                            format!(
-                                "load {}: {c} at node {}: the node carries no interface unknown (it is on no \
-                                 multiplier packet of a cohesive zone)",
-                                lc.label(),
-                                mesh.node_names[n]
-                            ),
-                        ))
-                    }
+                    // A node on no packet: its interface unknowns are inactive (held at zero by X-FEM's own
+                    // relations in Code_Aster), and the condition has nothing to act on there.
+                    [] => {}
                     _ => {
                         return Err(a.err(
                             "EXCIT",
@@ -320,12 +312,7 @@ fn impose_flow(
                 let off = ["PRE_FLU", "LAG_FLI", "LAG_FLS"].iter().position(|x| x == c).expect("listed");
                 match blocks[n].as_slice() {
                     [(zi, k)] => Some(flow.fracture[*zi][*k] + off),
-                    [] => {
-                        return Err(a.err(
-                            "EXCIT",
-                            format!("{c} at node {}: the node is on no multiplier packet", mesh.node_names[n]),
-                        ))
-                    }
+                    [] => None, // on no packet: nothing to act on (as LAGS_* above)
                     _ => {
                         return Err(a.err(
                             "EXCIT",
