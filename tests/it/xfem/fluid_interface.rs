@@ -1,5 +1,5 @@
-//! Coupled flow through a fluid-filled cohesive interface (issue 14, wtnv147a's set-up): the scene
-//! `comm/fluid_interface_2d.comm` holds the skeleton and the cohesive multipliers, prescribes the fracture
+//! Coupled flow through a fluid-filled cohesive interface (issue 14, wtnv147a's set-up): the scenes
+//! `comm/fluid_interface_2d.comm` and `_3d` hold the skeleton and the cohesive multipliers, prescribes the fracture
 //! pressure p_f on the interface and PRE1 = 0 on the bottom and top edges, and solves the bulk pressures
 //! and the exchange fluxes q± (LAG_FLI, LAG_FLS). Nothing is stored (incompressible liquid, Biot
 //! coefficient 1), so each step is the steady state: a linear pressure on each side and the fluxes
@@ -25,24 +25,34 @@ fn worst_error(resu: &str) -> (f64, usize) {
     (errs.iter().fold(0.0f64, |m, e| m.max(e.abs())), errs.len())
 }
 
-#[test]
-fn steady_exchange_is_exact() {
-    let out = scratch!("fluid_interface_2d");
+/// Run a scene: every check OK, the worst error below 1e-8, the log's account of the flow.
+fn steady_exchange(name: &str) {
+    let out = scratch!(name);
     let opts = RunOptions { out_dir: Some(out.clone()), units: Vec::new(), echo: false };
-    let o = runner::run_export(&root().join("comm/fluid_interface_2d.export"), &opts);
-    let resu = std::fs::read_to_string(out.join("fluid_interface_2d.resu")).unwrap_or_default();
-    let mess = std::fs::read_to_string(out.join("fluid_interface_2d.mess")).unwrap_or_default();
+    let o = runner::run_export(&root().join("comm").join(format!("{name}.export")), &opts);
+    let resu = std::fs::read_to_string(out.join(format!("{name}.resu"))).unwrap_or_default();
+    let mess = std::fs::read_to_string(out.join(format!("{name}.mess"))).unwrap_or_default();
     let _ = std::fs::remove_dir_all(&out);
-    assert_eq!(o.diagnostic, "OK", "{:?}", o.error);
+    assert_eq!(o.diagnostic, "OK", "{name}: {:?}", o.error);
     assert_eq!(o.nook_count(), 0);
     // 2 instants × (PRE1, LAG_FLI, LAG_FLS) × max and min × (ANALYTIQUE, NON_REGRESSION).
     assert_eq!(o.ok_count(), 24);
     let (worst, n) = worst_error(&resu);
     assert_eq!(n, 12, "every ANALYTIQUE line is read");
-    println!("fluid_interface_2d: worst relative error {worst:.2e}");
+    println!("{name}: worst relative error {worst:.2e}");
     assert!(worst <= 1e-8, "{worst:e}");
     assert!(mess.contains("solved: coupled flow"), "the log says the flow is solved");
     assert!(mess.contains("p_f (PRE_FLU) prescribed on all"), "the log says why the fracture balance is eliminated");
+}
+
+#[test]
+fn steady_exchange_2d_is_exact() {
+    steady_exchange("fluid_interface_2d");
+}
+
+#[test]
+fn steady_exchange_3d_is_exact() {
+    steady_exchange("fluid_interface_3d");
 }
 
 #[test]
