@@ -853,6 +853,83 @@ pub fn couplings(
     Ok(out)
 }
 
+/// The hydraulic coupling of one crack in one cell (the 2020 interface flow, `hm-coupled-formulation.md`
+/// §6.2): per pressure function of the cell (`cols`: vertex a, plain (None) or Heaviside set j) and packet
+/// k, `ep` = ∫ N̂_a ψ_j⁺ Φ_k and `em` = ∫ N̂_a ψ_j⁻ Φ_k over the facets (N̂ the linear vertex functions,
+/// ψ = 1 for the plain function, + the master side, where the level set is positive), and `mm` =
+/// ∫ Φ_k Φ_l, with the multiplier functions Φ of the mortar couplings (no component removed).
+#[derive(Debug, Clone)]
+pub struct Exchange {
+    pub cell: usize,
+    pub packets: Vec<usize>,
+    pub cols: Vec<(usize, Option<usize>)>,
+    /// Row-major (cols × packets).
+    pub ep: Vec<f64>,
+    pub em: Vec<f64>,
+    /// Row-major (packets × packets).
+    pub mm: Vec<f64>,
+}
+
+/// The hydraulic couplings of crack `g` from its facets, cell by cell as [`couplings`] (same facets,
+/// rule, packets and active vertices).
+pub fn exchanges(
+    mesh: &Mesh,
+    xm: &XfemModel,
+    g: usize,
+    facets: &[Facet],
+    rule: &QuadratureRule,
+    packet_of: &BTreeMap<usize, usize>,
+    active_edges: &BTreeSet<(usize, usize)>,
+) -> Result<Vec<Exchange>, String> {
+    let mut out = Vec::new();
+    for (c, fs) in by_cell(facets) {
+        let t = mesh.cell_types[c];
+        let nodes = &mesh.cells[c];
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let vt = crate::fem::elasticity::vertex_type(t);
+        let active = active_vertices(mesh, c, packet_of, active_edges)?;
+        if active.iter().all(|a| a.is_none()) {
+            continue;
+        }
+        let mut pk: Vec<usize> = active.iter().flatten().copied().collect();
+        pk.sort_unstable();
+        pk.dedup();
+        let npk = pk.len();
+        let mut cols = Vec::new();
+        for (a, &n) in nodes[..vt.nnodes()].iter().enumerate() {
+            cols.push((a, None));
+            cols.extend((0..xm.node_sets[n].len()).map(|j| (a, Some(j))));
+        }
+        let nc = cols.len();
+        let (mut ep, mut em, mut mm) = (vec![0.0; nc * npk], vec![0.0; nc * npk], vec![0.0; npk * npk]);
+        let code = |s: &[i32]| super::levelset::region_code(s);
+        for f in fs {
+            let (rm, rp) = (code(&f.slave), code(&f.master));
+            for p in facet_points(t, &coords, nodes, &xm.lsn[g], f, rule)? {
+                let lin = shape(vt, &p.xi);
+                let phi = multiplier_functions(&lin, &active, &pk);
+                for k in 0..npk {
+                    for l in 0..npk {
+                        mm[k * npk + l] += p.w * phi[k] * phi[l];
+                    }
+                }
+                for (r, &(a, set)) in cols.iter().enumerate() {
+                    let (sp, sm) = match set {
+                        None => (1.0, 1.0),
+                        Some(j) => (xm.psi(nodes[a], j, rp), xm.psi(nodes[a], j, rm)),
+                    };
+                    for k in 0..npk {
+                        ep[r * npk + k] += p.w * lin[a] * sp * phi[k];
+                        em[r * npk + k] += p.w * lin[a] * sm * phi[k];
+                    }
+                }
+            }
+        }
+        out.push(Exchange { cell: c, packets: pk, cols, ep, em, mm });
+    }
+    Ok(out)
+}
+
 /// A singular value of the scaled coupling block (columns of unit norm) below which its direction is
 /// null ([`null_multipliers`]). Structural null directions come out at 1e-16 or below; an interface
 /// 1e-7 … 1e-11 from a row of nodes, or tilted by 1e-7 … 1e-5 rad from one, turns some of them into

@@ -58,7 +58,8 @@ pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> R
     let t0 = Instant::now();
     let (mesh, xm, xd, md, ndim) = (&s.mesh, &s.xm, &s.xd, s.md, s.ndim());
     let mut lins: Vec<Lin> = Vec::new();
-    for &c in &s.model_cells {
+    // With coupled flow the bulk is the HM element of `flow`, not the elastic stiffness.
+    for &c in s.model_cells.iter().filter(|_| s.flow.is_none()) {
         let m = s.material(a, c)?;
         let (law, _) = elastic_of(&m, &mesh.cell_names[c]).map_err(|e| e.at(a.span))?;
         law.check(md).map_err(|e| a.err("CHAM_MATER", format!("cell {}: {e}", mesh.cell_names[c])))?;

@@ -42,6 +42,15 @@ fn heaviside_component(c: &str) -> Option<(usize, usize)> {
     (j >= 1).then_some((j - 1, d))
 }
 
+/// The multiplier (0: λ, 1: w, 2: μ) and local component (C, F1, F2) of an interface component of the
+/// first block: LAGS_*, LAG2_*, LAG3_*.
+fn interface_component(c: &str) -> Option<(usize, usize)> {
+    let (head, d) = c.split_once('_')?;
+    let u = ["LAGS", "LAG2", "LAG3"].iter().position(|h| *h == head)?;
+    let q = ["C", "F1", "F2"].iter().position(|x| *x == d)?;
+    Some((u, q))
+}
+
 fn direction(c: &str) -> Option<usize> {
     match c {
         "DX" => Some(0),
@@ -106,6 +115,7 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Co
     let mut jump_cache: BTreeMap<(usize, String), bool> = BTreeMap::new();
     let mut flux_loads: Vec<String> = Vec::new();
     let mut unsupported = None;
+    let blocks = super::state::node_blocks(s);
     for (lc, mult) in loads(a, t)? {
         let data = lc.data();
         let ConceptData::Load(load) = &*data else {
@@ -125,6 +135,18 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Co
                 // A fluid flux acts on the hydraulic equations only; they are eliminated when every
                 // hydraulic unknown is prescribed (checked below), and then it changes no unknown.
                 if s.hm && matches!(item, LoadItem::FluxThm { .. }) {
+                    if s.flow.is_some()
+                        && !matches!(item, LoadItem::FluxThm { value: LoadValue::Real(v), .. } if *v == 0.0)
+                    {
+                        return Err(a.err(
+                            "EXCIT",
+                            format!(
+                                "load {}: a non-zero FLUX_THM_REP with cohesive interfaces and coupled flow is not \
+                                 supported yet",
+                                lc.label()
+                            ),
+                        ));
+                    }
                     if !flux_loads.contains(&lc.label()) {
                         flux_loads.push(lc.label());
                     }
@@ -151,6 +173,27 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Co
                 );
             };
             let c = component.as_str();
+            if let Some((u, q)) = interface_component(c).filter(|&(_, q)| q < ndim) {
+                let v = mult * load_value(value, &mesh.coords[n], t)?;
+                match blocks[n].as_slice() {
+                    [(zi, k)] => cons.impose(xd.packets[s.zones[*zi].crack][*k] + u * ndim + q, v),
+                    // A node on no packet: its interface unknowns are inactive (held at zero by X-FEM's own
+                    // relations in Code_Aster), and the condition has nothing to act on there.
+                    [] => {}
+                    _ => {
+                        return Err(a.err(
+                            "EXCIT",
+                            format!(
+                                "load {}: {c} at node {}, which is on the packets of several interfaces: not \
+                                 supported yet",
+                                lc.label(),
+                                mesh.node_names[n]
+                            ),
+                        ))
+                    }
+                }
+                continue;
+            }
             if is_hydraulic(c) {
                 if !s.hm {
                     return Err(
@@ -226,7 +269,11 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Co
             }
         }
     }
-    let (mut report, pressure, free_hydraulics) = if s.hm {
+    let (mut report, pressure, free_hydraulics) = if let Some(flow) = &s.flow {
+        impose_flow(a, s, flow, &blocks, &hydraulic, &mut cons)?;
+        let fixed: BTreeSet<usize> = cons.imposed.iter().map(|&(d, _)| d).collect();
+        (flow.report(a, s, &|d| fixed.contains(&d))?, None, None)
+    } else if s.hm {
         match hydraulic_report(a, s, &hydraulic)? {
             Ok((r, p)) => (r, p, None),
             Err(what) => (String::new(), None, Some(what)),
@@ -235,14 +282,67 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Co
         (String::new(), None, None)
     };
     if !flux_loads.is_empty() {
-        let _ = writeln!(
-            report,
-            "    FLUX_THM_REP of {}: on the eliminated hydraulic equations only, so it changes no unknown",
-            flux_loads.join(", ")
-        );
+        let why = if s.flow.is_some() {
+            "a zero flux FLUN_HYDR1 (the only one supported with cohesive interfaces and coupled flow)"
+        } else {
+            "on the eliminated hydraulic equations only"
+        };
+        let _ = writeln!(report, "    FLUX_THM_REP of {}: {why}, so it changes no unknown", flux_loads.join(", "));
     }
     let pins = pin_translations(s, &mut cons, &blocked_dir);
     Ok(Conditions { cons, report, pins, pressure, free_hydraulics, unsupported })
+}
+
+/// The hydraulic values of the loads on the flow's unknowns: PRE1 and H<j>PRE1 on the vertices (passed
+/// over on middle nodes and nodes without the set, as Code_Aster's `afddli`), the fracture unknowns on
+/// the packet of the node's first interface block (PRE_FLU, LAG_FLI, LAG_FLS).
+fn impose_flow(
+    a: &Args,
+    s: &Setup,
+    flow: &super::flow::Flow,
+    blocks: &[Vec<(usize, usize)>],
+    hydraulic: &BTreeMap<(usize, String), f64>,
+    cons: &mut Constraints,
+) -> Result<()> {
+    let mesh = &*s.mesh;
+    for ((n, c), &v) in hydraulic {
+        let n = *n;
+        let d = match c.as_str() {
+            "PRE1" => flow.pre1[n],
+            "PRE_FLU" | "LAG_FLI" | "LAG_FLS" => {
+                let off = ["PRE_FLU", "LAG_FLI", "LAG_FLS"].iter().position(|x| x == c).expect("listed");
+                match blocks[n].as_slice() {
+                    [(zi, k)] => Some(flow.fracture[*zi][*k] + off),
+                    [] => None, // on no packet: nothing to act on (as LAGS_* above)
+                    _ => {
+                        return Err(a.err(
+                            "EXCIT",
+                            format!(
+                                "{c} at node {}, on the packets of several interfaces: not supported yet",
+                                mesh.node_names[n]
+                            ),
+                        ))
+                    }
+                }
+            }
+            h if h.starts_with('H') && h.ends_with("PRE1") => {
+                let j: usize = h[1..h.len() - 4]
+                    .parse()
+                    .map_err(|_| a.err("EXCIT", format!("{h}: not a Heaviside pressure component")))?;
+                flow.hpre1[n].get(j.wrapping_sub(1)).copied().flatten()
+            }
+            other => {
+                return Err(a.err(
+                    "EXCIT",
+                    format!("DDL_IMPO on {other} (a second interface's fracture unknowns) is not supported yet"),
+                ))
+            }
+        };
+        if let Some(d) = d {
+            cons.impose(d, v);
+        }
+    }
+    Ok(())
 }
 
 /// The report on the hydraulic unknowns of an HM model, and the pore pressure they prescribe when it is
@@ -257,17 +357,6 @@ fn hydraulic_report(
     let (mesh, xm, xd, ndim, zones) = (&*s.mesh, &*s.xm, &s.xd, s.ndim(), &s.zones);
     let mut report = String::new();
     let bulk = |c: &str| c == "PRE1" || (c.starts_with('H') && c.ends_with("PRE1"));
-    if let Some(((n, c), v)) = hydraulic.iter().find(|((_, c), v)| **v != 0.0 && !bulk(c)) {
-        return Err(a.err(
-            "EXCIT",
-            format!(
-                "{c} = {v} at node {}: a non-zero fracture pressure or exchange flux needs the flow in the \
-                 interface, which X-FEM {} elements do not support yet",
-                mesh.node_names[*n],
-                if ndim == 2 { "D_PLAN_HM" } else { "3D_HM" }
-            ),
-        ));
-    }
     let fixed = |n: usize, c: &str| hydraulic.contains_key(&(n, c.to_string()));
     let mut vertices: BTreeSet<usize> = BTreeSet::new();
     for (nodes, t) in mesh.cells.iter().zip(&mesh.cell_types) {
@@ -315,6 +404,17 @@ fn hydraulic_report(
             }
             n_pk += 1;
         }
+    }
+    if let Some(((n, c), v)) = hydraulic.iter().find(|((_, c), v)| **v != 0.0 && !bulk(c)) {
+        return Err(a.err(
+            "EXCIT",
+            format!(
+                "{c} = {v} at node {}: a non-zero fracture pressure or exchange flux acts on the lips through the flow in the \
+                 interface, which X-FEM {} elements with every hydraulic unknown prescribed do not support yet",
+                mesh.node_names[*n],
+                if ndim == 2 { "D_PLAN_HM" } else { "3D_HM" }
+            ),
+        ));
     }
     if zero {
         let _ = writeln!(

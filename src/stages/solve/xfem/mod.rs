@@ -3,14 +3,16 @@
 //! ALGO_CONT='CZM', RELATION='CZM_LIN_MIX' (`hm-xfem-formulation.md` §4–§6).
 //!
 //! Only the effects the scene calls for are simulated. Hydro-mechanical
-//! models (D_PLAN_HM, 3D_HM) are accepted when every hydraulic unknown is
-//! prescribed: the pressures and their Heaviside parts (any values) and the
-//! fracture unknowns (p_f, q⁺, q⁻ of every multiplier packet, to zero) are
-//! then eliminated; a prescribed pore pressure loads the skeleton through
-//! the Biot term −b·p (`forces`), p_f = 0 leaves the interface equations
-//! alone, and the run log says so; a scene that needs coupled flow stops
-//! with a message. Interfaces without a contact zone carry no unknowns
-//! (free surfaces).
+//! models (D_PLAN_HM, 3D_HM) whose every hydraulic unknown is prescribed
+//! have them eliminated: the pressures and their Heaviside parts (any values)
+//! and the fracture unknowns (p_f, q⁺, q⁻ of every multiplier packet, to
+//! zero); a prescribed pore pressure loads the skeleton through the Biot term
+//! −b·p (`forces`), p_f = 0 leaves the interface equations alone, and the run
+//! log says so. When some are free, a scene without cohesive zones goes to the
+//! HM driver, and one with cohesive zones solves the flow here (`flow`: the HM
+//! elements on the sub-cells and the 2020 interface hydraulics, with p_f
+//! prescribed). Interfaces without a contact zone carry no unknowns (free
+//! surfaces).
 //!
 //! ETAT_INIT=_F(EVOL_NOLI=...) starts from a stored step: every unknown from its DEPL, the cohesive
 //! variables from its COHE_ELEM (`state`), the first instant at the step's (`nmdoin`, `nmdini`). With
@@ -21,6 +23,7 @@
 
 mod assemble;
 mod conditions;
+mod flow;
 mod forces;
 mod hydraulic;
 mod report;
@@ -68,20 +71,36 @@ fn solve_xfem(
 ) -> Result<Option<ConceptData>> {
     let statics = command == "MECA_STATIQUE";
     let t_start = Instant::now();
-    let s = setup::setup(a, model)?;
+    let mut s = setup::setup(a, model)?;
     // The unknowns the kinematic conditions prescribe, at the first instant solved: multiplier components
     // that test only prescribed jumps are removed (`discrete::dead_components`).
     let t_first = times.get(1).or(times.last()).copied().unwrap_or(0.0);
-    let first = conditions::constraints(a, model, &s, t_first)?;
+    let mut first = conditions::constraints(a, model, &s, t_first)?;
     if first.free_hydraulics.is_some() && s.zones.is_empty() && !statics && init.is_none() {
         // Coupled flow without cohesive interfaces: the HM driver, on the enriched elements
         // (`stages::core::hm`), solves the flow with the mechanics.
         return crate::stages::solve::hm::stat_non_line_hm(ctx, a, model);
     }
+    if first.free_hydraulics.is_some() && !s.zones.is_empty() && first.unsupported.is_none() {
+        // Coupled flow with cohesive interfaces: the HM elements and the interface hydraulics join this
+        // driver's unknowns (`flow`), which keeps the mortar law and its multipliers in one place.
+        if statics {
+            return Err(a.err("EXCIT", "coupled flow needs STAT_NON_LINE (MECA_STATIQUE solves no flow)"));
+        }
+        if init.is_some() {
+            return Err(a.err(
+                "ETAT_INIT",
+                "ETAT_INIT with coupled flow in cohesive interfaces is not supported yet (the HM point states are \
+                 not read back)",
+            ));
+        }
+        s.flow = Some(flow::Flow::new(a, model, &s)?);
+        first = conditions::constraints(a, model, &s, t_first)?;
+    }
     first.require_prescribed_hydraulics(a)?;
     let cons = first.cons;
     let fixed: std::collections::BTreeSet<usize> = cons.imposed.iter().map(|&(d, _)| d).collect();
-    let map = crate::fem::dofs::DofMap::build(s.xd.n, &cons).map_err(|e| a.err("EXCIT", e.to_string()))?;
+    let map = crate::fem::dofs::DofMap::build(s.nunk(), &cons).map_err(|e| a.err("EXCIT", e.to_string()))?;
     let el = assemble::elements(a, &s, &fixed, &map)?;
     // ARCHIVAGE (STAT_NON_LINE): the instants and fields stored.
     let archive = if statics { None } else { Some(crate::stages::core::newton::Archive::from_args(a, &times)?) };
@@ -96,7 +115,7 @@ fn solve_xfem(
     };
     let (x, states) = match &init {
         Some(src) => state::restore(a, src, &s, &el)?,
-        None => (vec![0.0; s.xd.n], vec![crate::xfem::czm::CzmState::default(); el.laws.len()]),
+        None => (vec![0.0; s.nunk()], vec![crate::xfem::czm::CzmState::default(); el.laws.len()]),
     };
     let start = step::Start { x, states, store: !statics && reused.is_none(), restart: init.is_some() };
     let mut run = step::run(a, model, &s, &el, &times, statics, archive.as_ref(), start)?;

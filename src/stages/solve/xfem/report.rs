@@ -117,10 +117,18 @@ pub fn run_log(
             su.iter_cont_maxi
         );
     }
+    let flow = su.flow.as_ref().map_or(String::new(), |f| {
+        format!(", {} pressures PRE1/H*PRE1, {} fracture p_f/q+/q-", f.npressure, f.n - f.first_pressure - f.npressure)
+    });
     let _ = writeln!(
         s,
-        "    unknowns  : {} ({} standard, {} Heaviside, {} interface λ/w/μ), {} solved after elimination of the kinematic conditions",
-        su.xd.n, su.xd.n_std, su.xd.n_heaviside, su.xd.n_interface, run.nfree
+        "    unknowns  : {} ({} standard, {} Heaviside, {} interface λ/w/μ{flow}), {} solved after elimination of the \
+         kinematic conditions",
+        su.nunk(),
+        su.xd.n_std,
+        su.xd.n_heaviside,
+        su.xd.n_interface,
+        run.nfree
     );
     let _ = writeln!(
         s,
@@ -171,6 +179,24 @@ pub fn label(s: &Setup, d: usize) -> String {
                     names(mesh, &z.packets[k]),
                     (d - b) % xd.ndim
                 );
+            }
+        }
+    }
+    if let Some(f) = &s.flow {
+        for (n, p) in f.pre1.iter().enumerate() {
+            if *p == Some(d) {
+                return format!("{} PRE1", mesh.node_names[n]);
+            }
+            if let Some(j) = f.hpre1[n].iter().position(|h| *h == Some(d)) {
+                return format!("{} H{}PRE1", mesh.node_names[n], j + 1);
+            }
+        }
+        for (zi, z) in zones.iter().enumerate() {
+            for (k, &b) in f.fracture[zi].iter().enumerate() {
+                if (b..b + 3).contains(&d) {
+                    let what = ["PRE_FLU", "LAG_FLI", "LAG_FLS"][d - b];
+                    return format!("{} packet {:?} {what}", xm.crack_names[z.crack], names(mesh, &z.packets[k]));
+                }
             }
         }
     }

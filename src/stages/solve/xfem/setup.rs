@@ -40,11 +40,18 @@ pub struct Setup {
     pub xd: XDofs,
     /// NEWTON's options when the file sets them, for the log.
     pub newton_note: Option<String>,
+    /// The interface hydraulics, when the scene leaves hydraulic unknowns free (`flow`).
+    pub flow: Option<super::flow::Flow>,
 }
 
 impl Setup {
     pub fn ndim(&self) -> usize {
         self.md.dim()
+    }
+
+    /// The number of unknowns: the mechanical ones, and the flow's with free hydraulics.
+    pub fn nunk(&self) -> usize {
+        self.flow.as_ref().map_or(self.xd.n, |f| f.n)
     }
 
     /// The material of a cell.
@@ -133,10 +140,12 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
         iter_cont_maxi,
         xd,
         newton_note,
+        flow: None,
     })
 }
 
-/// COMPORTEMENT: the elastic part of the kit; the hydraulic laws only act on eliminated unknowns.
+/// COMPORTEMENT: the elastic part of the kit; the hydraulic laws act on the flow when the scene leaves
+/// hydraulic unknowns free (`flow`), else only on eliminated unknowns.
 fn check_behaviour(a: &Args, modelisation: Modelling, hm: bool) -> Result<()> {
     if !a.declares("COMPORTEMENT") {
         return Ok(()); // MECA_STATIQUE: linear elasticity.

@@ -5,8 +5,8 @@
 //!   interface unknowns, all in the interface's local basis (n, τ1, τ2): λ as LAGS_C LAGS_F1 (LAGS_F2), w
 //!   as LAG2_*, μ as LAG3_* (the first block; a node on the packets of a second or third interface uses
 //!   the blocks D1*/D2*/D3* and V1*/V2*/V3*, `meca_d_plan_hm_xmc.py` EN5/EN6), preceded on HM models by
-//!   the fracture unknowns PRE_FLU LAG_FLI LAG_FLS (PR2_*, LA2_*; PR3_*, LA3_*), zero since the driver
-//!   eliminates them. Every node of a packet carries the packet's values (Code_Aster ties them by equality).
+//!   the fracture unknowns PRE_FLU LAG_FLI LAG_FLS (PR2_*, LA2_*; PR3_*, LA3_*), zero when the driver
+//!   eliminates them, solved with coupled flow (`flow`; PRE1 and H<j>PRE1 too). Every node of a packet carries the packet's values (Code_Aster ties them by equality).
 //! - COHE_ELEM holds the cohesive internal variables, which Code_Aster keeps in this field for the
 //!   cohesive X-FEM laws and reads back at ETAT_INIT (`nmetac`, `nmetcr`: ELNO for the mortar interfaces
 //!   `XFEM_CONT=2`, the `N5NEUTR` variables of `te0556`): per contact cell and vertex, X1 = κ (the largest
@@ -113,7 +113,16 @@ pub fn depl_fields(a: &Args, s: &Setup, x: &[f64], pressure: Option<&PorePressur
         row[..ndim].copy_from_slice(&x[b..b + ndim]);
         let mut k = ndim;
         if hm {
-            if vertex[n] {
+            if let Some(f) = &s.flow {
+                if let Some(d) = f.pre1[n] {
+                    row[k] = x[d];
+                }
+                for (j, h) in f.hpre1[n].iter().enumerate() {
+                    if let Some(d) = h {
+                        row[hp + j] = x[*d];
+                    }
+                }
+            } else if vertex[n] {
                 row[k] = pressure.map_or(0.0, |p| p.pre1[n]);
                 for j in 0..xd.sets[n].len() {
                     row[hp + j] = pressure.map_or(0.0, |p| p.hpre1[n][j]);
@@ -128,7 +137,13 @@ pub fn depl_fields(a: &Args, s: &Setup, x: &[f64], pressure: Option<&PorePressur
             let base = xd.packets[s.zones[zi].crack][p];
             let at = first_interface + bi * block_width;
             let hyd = if hm { 3 } else { 0 };
-            row[at..at + hyd].fill(0.0);
+            match &s.flow {
+                Some(f) => {
+                    let d = f.fracture[zi][p];
+                    row[at..at + 3].copy_from_slice(&x[d..d + 3]);
+                }
+                None => row[at..at + hyd].fill(0.0),
+            }
             row[at + hyd..at + hyd + 3 * ndim].copy_from_slice(&x[base..base + 3 * ndim]);
         }
     }

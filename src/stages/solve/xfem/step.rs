@@ -66,7 +66,10 @@ pub fn run(
     let (xd, ndim) = (&s.xd, s.ndim());
     let Start { mut x, mut states, store, restart } = start;
     let mut run = Run::default();
-    let hydro = HydraulicRows::new(a, s, el)?;
+    // Eliminated hydraulics count in the reference through their storage rows; with coupled flow every
+    // hydraulic row is assembled.
+    let hydro = if s.flow.is_some() { None } else { HydraulicRows::new(a, s, el)? };
+    let mut hm_states = s.flow.as_ref().map(|f| f.initial_states(&x)).unwrap_or_default();
     if store {
         run.steps.push(Step { nume_ordre: 0, inst: times[0], fields: step_fields(a, s, el, &x, &states, None)? });
     }
@@ -89,15 +92,20 @@ pub fn run(
                 }
             }
         }
-        // Multiplier directions that test no free jump: μ is kept orthogonal to them.
+        // Multiplier directions that test no free jump: μ is kept orthogonal to them, unless the loads
+        // prescribe λ on every component of the direction (DDL_IMPO on LAGS_*): the w-rows then fix μ.
+        let fixed: std::collections::BTreeSet<usize> = cons.imposed.iter().map(|&(d, _)| d).collect();
         for v in el.null.iter().flatten() {
+            if v.iter().all(|&(d, _)| fixed.contains(&(d - 2 * ndim))) {
+                continue;
+            }
             cons.relation(v.clone(), 0.0);
         }
         if n == 1 {
             run.hm_report = hydr;
             run.pinned = pins;
         }
-        let map = DofMap::build(xd.n, &cons).map_err(|e| a.err("EXCIT", e.to_string()))?;
+        let map = DofMap::build(s.nunk(), &cons).map_err(|e| a.err("EXCIT", e.to_string()))?;
         let fext = super::forces::external(a, s, t, pressure.as_ref())?;
         run.nfree = map.nfree;
         let mut elems = ElementDofs::new();
@@ -107,6 +115,9 @@ pub fn run(
         for l in &el.laws {
             let v: Vec<usize> = (l.base..l.base + 2 * ndim).collect();
             elems.push(&v);
+        }
+        if let Some(f) = &s.flow {
+            f.elements(s, &mut elems);
         }
         let pattern = SparsityPattern::build(&map, &elems);
         if restart && n == 1 {
@@ -123,6 +134,7 @@ pub fn run(
                 x0: &x,
                 hydro: hydro.as_ref(),
                 fext: fext.as_deref(),
+                flow: None,
                 ref_hist,
                 rf: Vec::new(),
                 k: None,
@@ -152,6 +164,7 @@ pub fn run(
             x0: &x_start,
             hydro: hydro.as_ref(),
             fext: fext.as_deref(),
+            flow: s.flow.as_ref().map(|_| FlowStep { prev: &hm_states, dt: t - times[n - 1], t, states: Vec::new() }),
             ref_hist,
             rf: Vec::new(),
             k: None,
@@ -175,6 +188,9 @@ pub fn run(
             }
         }
         x = step.x;
+        if let Some(f) = step.flow {
+            hm_states = f.states;
+        }
         // Internal variables after convergence.
         for (li, l) in el.laws.iter().enumerate() {
             let z = &s.zones[l.zone];
@@ -245,6 +261,8 @@ struct XfemStep<'s> {
     hydro: Option<&'s HydraulicRows>,
     /// The external forces of the instant (lip pressures), if any.
     fext: Option<&'s [f64]>,
+    /// With coupled flow: the step and the HM point states.
+    flow: Option<FlowStep<'s>>,
     ref_hist: f64,
     /// Of the last residual: the reduced residual and the tangent.
     rf: Vec<f64>,
@@ -257,6 +275,15 @@ struct XfemStep<'s> {
     vanished: bool,
     t_asm: Duration,
     t_fact: Duration,
+}
+
+/// The flow's part of one instant: the point states at its start, the step, and the states of the last
+/// residual.
+struct FlowStep<'s> {
+    prev: &'s [Vec<crate::hm::law::PointState>],
+    dt: f64,
+    t: f64,
+    states: Vec<Vec<crate::hm::law::PointState>>,
 }
 
 impl XfemStep<'_> {
@@ -289,7 +316,7 @@ impl XfemStep<'_> {
 impl NewtonStep for XfemStep<'_> {
     fn residual(&mut self) -> Result<(f64, f64)> {
         let ta = Instant::now();
-        let n = self.s.xd.n;
+        let n = self.s.nunk();
         let mut r = vec![0.0; n];
         let mut asm = Assembler::new(self.map, self.pattern.clone());
         for l in self.lins {
@@ -304,6 +331,9 @@ impl NewtonStep for XfemStep<'_> {
             let ke = self.law(l, &self.s.zones[l.zone], &self.states[li], &mut r);
             let dofs: Vec<usize> = (l.base..l.base + 2 * self.s.ndim()).collect();
             asm.add_matrix(&dofs, &ke);
+        }
+        if let (Some(flow), Some(fs)) = (&self.s.flow, &mut self.flow) {
+            fs.states = flow.add(self.a, self.s, &self.x, self.x0, fs.prev, fs.dt, fs.t, &mut r, &mut asm)?;
         }
         let (k, _) = asm.finish();
         // r = F_int − F_ext; the external forces enter the reference with the reactions.
