@@ -186,3 +186,16 @@ sets=$(grep -m1 "X-FEM     :" "$mess" | sed 's/.*X-FEM     : \([0-9]*\) Heavisid
 post=$(awk '/# End of command #[0-9]+ POST_(MAIL|CHAM)_XFEM/ { s += $(NF - 1) } END { printf "%.2f", s }' "$mess")
 echo "| $NF x $NF | $unk | $solved | $(wall "$d/time") | $(rss "$d/time") | $(cmd_time "$mess" DEFI_FISS_XFEM) | $(cmd_time "$mess" MODI_MODELE_XFEM) | $(cmd_time "$mess" STAT_NON_LINE) | $(f 'elements and assembly') | $(f 'analysis') | $(f ', factorization') | $(f 'solves') | $post | $sets |"
 grep -m1 'DIAGNOSTIC JOB' "$mess" | sed 's/^ */run: /'
+
+# The same mesh under comm/fluid_interface_2d.comm: one cohesive interface filled with fluid at a
+# prescribed pressure, the exchange with the rock on each side solved (the 2020 interface hydraulics).
+l=$(load)
+/usr/bin/time -v -o "$d/fi.time" "$ASTER" run comm/fluid_interface_2d.comm --unit 20="$d/m.med" --out "$d" -q \
+    >/dev/null 2>&1 || true
+mess=$d/fluid_interface_2d.mess
+echo
+echo "Fluid-filled interface (comm/fluid_interface_2d.comm on the same mesh, load $l at start):"
+echo
+echo "| unknowns | solved | wall (s) | peak (GiB) | DEFI_FISS_XFEM | MODI_MODELE_XFEM | STAT_NON_LINE | POST_* | checks |"
+echo "|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+echo "| $(grep -m1 "unknowns  :" "$mess" | sed 's/.*unknowns  : \([0-9]*\).*/\1/') | $(grep -m1 "unknowns  :" "$mess" | sed 's/.*, \([0-9]*\) solved.*/\1/') | $(wall "$d/fi.time") | $(rss "$d/fi.time") | $(cmd_time "$mess" DEFI_FISS_XFEM) | $(cmd_time "$mess" MODI_MODELE_XFEM) | $(cmd_time "$mess" STAT_NON_LINE) | $(awk '/# End of command #[0-9]+ POST_/ { s += $(NF - 1) } END { printf "%.2f", s }' "$mess") | $(grep -m1 'checks:' "$mess" | sed 's/^ *//; s/ *elapsed.*//') |"
