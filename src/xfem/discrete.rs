@@ -674,6 +674,25 @@ fn component_functions(phi: &[f64], dead: &[bool]) -> Vec<f64> {
     phi.iter().zip(dead).map(|(v, &d)| if d || nlive == 0 { 0.0 } else { v + spare / nlive as f64 }).collect()
 }
 
+/// The active vertices of cell `c` ([`active_vertices`]) and the packets they carry, sorted, or None when
+/// no vertex of the cell is active.
+#[allow(clippy::type_complexity)]
+fn cell_packets(
+    mesh: &Mesh,
+    c: usize,
+    packet_of: &BTreeMap<usize, usize>,
+    active_edges: &BTreeSet<(usize, usize)>,
+) -> Result<Option<(Vec<Option<usize>>, Vec<usize>)>, String> {
+    let active = active_vertices(mesh, c, packet_of, active_edges)?;
+    if active.iter().all(|a| a.is_none()) {
+        return Ok(None);
+    }
+    let mut pk: Vec<usize> = active.iter().flatten().copied().collect();
+    pk.sort_unstable();
+    pk.dedup();
+    Ok(Some((active, pk)))
+}
+
 /// The active vertices of crack `g`'s multipliers in cell `c` (`xmulhm`): ends
 /// of its cut edges and vertex points, with their packets; None when a node of
 /// a cut edge has no packet.
@@ -798,15 +817,8 @@ pub fn couplings(
         // Active vertices (`xmulhm`): ends of cut edges of this cell, and
         // vertices where the interface passes (vertex points, listed as
         // degenerate edges (v, v)).
-        let active = active_vertices(mesh, c, packet_of, active_edges)?;
-        if active.iter().all(|a| a.is_none()) {
-            // No cut edge here (the interface passes through vertices only):
-            // no multiplier lives on these facets.
-            continue;
-        }
-        let mut pk: Vec<usize> = active.iter().flatten().copied().collect();
-        pk.sort_unstable();
-        pk.dedup();
+        // No cut edge here (the interface passes through vertices only): no multiplier lives on these facets.
+        let Some((active, pk)) = cell_packets(mesh, c, packet_of, active_edges)? else { continue };
         let npk = pk.len();
         // Cell unknown layout (XDofs::cell_dofs order).
         let cols = cell_columns(nodes, xm, ndim);
@@ -887,13 +899,7 @@ pub fn exchanges(
         let nodes = &mesh.cells[c];
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
         let vt = crate::fem::elasticity::vertex_type(t);
-        let active = active_vertices(mesh, c, packet_of, active_edges)?;
-        if active.iter().all(|a| a.is_none()) {
-            continue;
-        }
-        let mut pk: Vec<usize> = active.iter().flatten().copied().collect();
-        pk.sort_unstable();
-        pk.dedup();
+        let Some((active, pk)) = cell_packets(mesh, c, packet_of, active_edges)? else { continue };
         let npk = pk.len();
         let mut cols = Vec::new();
         for (a, &n) in nodes[..vt.nnodes()].iter().enumerate() {

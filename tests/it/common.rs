@@ -131,3 +131,19 @@ pub fn run_corpus_cases(out: &Path, cases: &[(&str, usize)]) {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     let _ = std::fs::remove_dir_all(out);
 }
+
+/// The rows of the table `intitule` in a run's .resu text (IMPR_TABLE of POST_RELEVE_T): per row, the
+/// value of each column by its name (the header line starts with INTITULE, each row with the title).
+pub fn resu_rows(resu: &str, intitule: &str) -> Vec<std::collections::BTreeMap<String, String>> {
+    let mut out = Vec::new();
+    let mut cols: Vec<&str> = Vec::new();
+    for l in resu.lines() {
+        let w: Vec<&str> = l.split_whitespace().collect();
+        if w.first() == Some(&"INTITULE") {
+            cols = w;
+        } else if w.first() == Some(&intitule) && w.len() == cols.len() {
+            out.push(cols.iter().zip(&w).map(|(c, v)| (c.to_string(), v.to_string())).collect());
+        }
+    }
+    out
+}

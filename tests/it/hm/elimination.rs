@@ -14,22 +14,10 @@ fn solved(mess: &str) -> usize {
 
 /// The PRE1 values of the `P` table (node, value) of a run's .resu text.
 fn pressures(resu: &str) -> Vec<(String, f64)> {
-    let mut out = Vec::new();
-    let mut cols: Vec<&str> = Vec::new();
-    for l in resu.lines() {
-        let w: Vec<&str> = l.split_whitespace().collect();
-        if w.first() == Some(&"INTITULE") {
-            cols = w;
-            continue;
-        }
-        if w.first() == Some(&"P") && !cols.is_empty() {
-            let node = w[cols.iter().position(|c| *c == "NOEUD").unwrap()].to_string();
-            if let Ok(v) = w[cols.iter().position(|c| *c == "PRE1").unwrap()].parse::<f64>() {
-                out.push((node, v));
-            }
-        }
-    }
-    out
+    crate::common::resu_rows(resu, "P")
+        .into_iter()
+        .filter_map(|r| Some((r.get("NOEUD")?.clone(), r.get("PRE1")?.parse().ok()?)))
+        .collect()
 }
 
 #[test]

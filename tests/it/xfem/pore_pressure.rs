@@ -24,20 +24,10 @@ const Y_C: f64 = 1.3;
 
 /// Rows (node, DY, PRE1) of the `LIPS` table of a run's .resu text.
 fn lips(resu: &str) -> Vec<(String, f64, f64)> {
-    let mut out = Vec::new();
-    let mut cols: Vec<&str> = Vec::new();
-    for l in resu.lines() {
-        let w: Vec<&str> = l.split_whitespace().collect();
-        if w.first() == Some(&"INTITULE") {
-            cols = w;
-            continue;
-        }
-        if w.first() == Some(&"LIPS") && !cols.is_empty() {
-            let at = |c: &str| w[cols.iter().position(|x| *x == c).unwrap()];
-            out.push((at("NOEUD").to_string(), at("DY").parse().unwrap(), at("PRE1").parse().unwrap()));
-        }
-    }
-    out
+    crate::common::resu_rows(resu, "LIPS")
+        .into_iter()
+        .map(|r| (r["NOEUD"].clone(), r["DY"].parse().unwrap(), r["PRE1"].parse().unwrap()))
+        .collect()
 }
 
 /// The column's command file with the hydraulic load `hydr` and the instants `inst`.
