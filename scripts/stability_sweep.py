@@ -67,9 +67,9 @@ RESVISU = POST_CHAM_XFEM(MODELE_VISU=MOVISU, RESULTAT=RESU)
 FIN()
 """
 
-CELLS = {"QUAD8": (2, "4,4", "4,4", 4.0), "QUAD4": (2, "4,4", "4,4", 4.0), "TRIA3": (2, "4,4", "4,4", 4.0),
+CELLS = {"QUAD8": (2, "4,4", "4,4", 4.0), "QUAD4": (2, "4,4", "4,4", 4.0), "TRIA3": (2, "4,4", "4,4", 4.0), "TRIA6": (2, "4,4", "4,4", 4.0),
          "HEXA20": (3, "2,2,2", "2,2,2", 2.0), "HEXA8": (3, "2,2,2", "2,2,2", 2.0),
-         "TETRA4": (3, "2,2,2", "2,2,2", 2.0), "PENTA6": (3, "2,2,2", "2,2,2", 2.0)}
+         "TETRA4": (3, "2,2,2", "2,2,2", 2.0), "TETRA10": (3, "2,2,2", "2,2,2", 2.0), "PENTA6": (3, "2,2,2", "2,2,2", 2.0)}
 # `python3 scripts/stability_sweep.py TRIA3 TETRA4` sweeps those families only (exploration: the
 # tables and plots are then of those families alone).
 if len(sys.argv) > 1:
@@ -140,7 +140,7 @@ def svg(rows, key, title, path, ymin, ymax):
     w, h, ml, mr, mt, mb = 760, 460, 60, 170, 30, 40
     colors = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf",
               "#7f7f7f", "#bcbd22", "#000000", "#aec7e8", "#ff9896", "#98df8a", "#c5b0d5", "#ffbb78",
-              "#c49c94", "#f7b6d2", "#9edae5", "#dbdb8d", "#393b79", "#637939", "#8c6d31", "#843c39"]
+              "#c49c94", "#f7b6d2", "#9edae5", "#dbdb8d", "#393b79", "#637939", "#8c6d31", "#843c39", "#7b4173", "#3182bd", "#e6550d"]
     xs = lambda k: ml + (w - ml - mr) * ((15 if k == "inf" else k) - 1) / 14
     ys = lambda v: mt + (h - mt - mb) * (ymax - max(ymin, min(ymax, math.log10(max(v, 1e-300))))) / (ymax - ymin)
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" font-family="sans-serif" '
