@@ -228,6 +228,18 @@ def main():
                              ("—" if math.isnan(r["condition"]) else f'{r["condition"]:.0e}'))
             lines.append(f'| {"∞" if kk == "inf" else kk} | ' + " | ".join(cells) + " |")
         lines.append("")
+    lines.append("per family (every row and k): runs, worst node error / U (where), condition estimate lowest – highest\n")
+    lines.append("| family | runs | not OK | worst error / U | at | condition |")
+    lines.append("|---|---|---|---|---|---|")
+    for c in CELLS:
+        rs = [x for x in rows if x["cell"] == c]
+        bad = sum(x["diagnostic"] != "OK" for x in rs)
+        w = max(rs, key=lambda x: -1.0 if math.isnan(x["error"]) else x["error"])
+        cs = [x["condition"] for x in rs if not math.isnan(x["condition"])]
+        at = f'{w["row"]}, k = {"∞" if w["k"] == "inf" else w["k"]}'
+        cond = f"{min(cs):.0e} – {max(cs):.0e}" if cs else "—"
+        lines.append(f'| {c} | {len(rs)} | {bad} | {w["error"]:.1e} | {at} | {cond} |')
+    lines.append("")
     with open(os.path.join(DATA, "table.md"), "w") as f:
         f.write("\n".join(lines))
     svg(rows, "error", "worst node error / U (mesh and visual nodes); × a NOOK, no point: the run stopped", os.path.join(OUT, "error.svg"),
