@@ -25,6 +25,7 @@ import math
 import os
 import re
 import subprocess
+import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -66,8 +67,13 @@ RESVISU = POST_CHAM_XFEM(MODELE_VISU=MOVISU, RESULTAT=RESU)
 FIN()
 """
 
-CELLS = {"QUAD8": (2, "4,4", "4,4", 4.0), "QUAD4": (2, "4,4", "4,4", 4.0),
-         "HEXA20": (3, "2,2,2", "2,2,2", 2.0), "HEXA8": (3, "2,2,2", "2,2,2", 2.0)}
+CELLS = {"QUAD8": (2, "4,4", "4,4", 4.0), "QUAD4": (2, "4,4", "4,4", 4.0), "TRIA3": (2, "4,4", "4,4", 4.0), "TRIA6": (2, "4,4", "4,4", 4.0),
+         "HEXA20": (3, "2,2,2", "2,2,2", 2.0), "HEXA8": (3, "2,2,2", "2,2,2", 2.0),
+         "TETRA4": (3, "2,2,2", "2,2,2", 2.0), "TETRA10": (3, "2,2,2", "2,2,2", 2.0), "PENTA6": (3, "2,2,2", "2,2,2", 2.0)}
+# `python3 scripts/stability_sweep.py TRIA3 TETRA4` sweeps those families only (exploration: the
+# tables and plots are then of those families alone).
+if len(sys.argv) > 1:
+    CELLS = {c: v for c, v in CELLS.items() if c in sys.argv[1:]}
 ROWS = {
     2: {"row12": "(Y-0.5*X)/1.118033988749895", "diag": "(X+Y-2.0)/1.4142135623730951", "axis": "X-1.0"},
     3: {"row12": "(Z-0.5*X)/1.118033988749895", "diag": "(X+Y+Z-2.0)/1.7320508075688772", "axis": "X-1.0"},
@@ -131,9 +137,10 @@ def fmt(r):
 
 
 def svg(rows, key, title, path, ymin, ymax):
-    w, h, ml, mr, mt, mb = 760, 420, 60, 170, 30, 40
+    w, h, ml, mr, mt, mb = 760, 460, 60, 170, 30, 40
     colors = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2", "#17becf",
-              "#7f7f7f", "#bcbd22", "#000000", "#aec7e8"]
+              "#7f7f7f", "#bcbd22", "#000000", "#aec7e8", "#ff9896", "#98df8a", "#c5b0d5", "#ffbb78",
+              "#c49c94", "#f7b6d2", "#9edae5", "#dbdb8d", "#393b79", "#637939", "#8c6d31", "#843c39", "#7b4173", "#3182bd", "#e6550d"]
     xs = lambda k: ml + (w - ml - mr) * ((15 if k == "inf" else k) - 1) / 14
     ys = lambda v: mt + (h - mt - mb) * (ymax - max(ymin, min(ymax, math.log10(max(v, 1e-300))))) / (ymax - ymin)
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{w}" height="{h}" font-family="sans-serif" '
@@ -203,10 +210,13 @@ def main():
         wr = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
         wr.writeheader()
         wr.writerows(rows)
-    series = [(c, r) for c in CELLS for r in ROWS[CELLS[c][0]]]
     lines = []
-    for key, title in (("error", "worst node error / U"), ("condition", "condition estimate")):
-        lines.append(f"{title}:\n")
+    for (key, title), dim in [(kt, d) for kt in (("error", "worst node error / U"), ("condition", "condition estimate"))
+                              for d in (2, 3)]:
+        series = [(c, r) for c in CELLS if CELLS[c][0] == dim for r in ROWS[dim]]
+        if not series:
+            continue
+        lines.append(f"{title}, {dim}D:\n")
         lines.append("| k | " + " | ".join(f"{c} {r}" for c, r in series) + " |")
         lines.append("|---" * (len(series) + 1) + "|")
         for k in KS:
@@ -218,6 +228,18 @@ def main():
                              ("—" if math.isnan(r["condition"]) else f'{r["condition"]:.0e}'))
             lines.append(f'| {"∞" if kk == "inf" else kk} | ' + " | ".join(cells) + " |")
         lines.append("")
+    lines.append("per family (every row and k): runs, worst node error / U (where), condition estimate lowest – highest\n")
+    lines.append("| family | runs | not OK | worst error / U | at | condition |")
+    lines.append("|---|---|---|---|---|---|")
+    for c in CELLS:
+        rs = [x for x in rows if x["cell"] == c]
+        bad = sum(x["diagnostic"] != "OK" for x in rs)
+        w = max(rs, key=lambda x: -1.0 if math.isnan(x["error"]) else x["error"])
+        cs = [x["condition"] for x in rs if not math.isnan(x["condition"])]
+        at = f'{w["row"]}, k = {"∞" if w["k"] == "inf" else w["k"]}'
+        cond = f"{min(cs):.0e} – {max(cs):.0e}" if cs else "—"
+        lines.append(f'| {c} | {len(rs)} | {bad} | {w["error"]:.1e} | {at} | {cond} |')
+    lines.append("")
     with open(os.path.join(DATA, "table.md"), "w") as f:
         f.write("\n".join(lines))
     svg(rows, "error", "worst node error / U (mesh and visual nodes); × a NOOK, no point: the run stopped", os.path.join(OUT, "error.svg"),
@@ -236,7 +258,9 @@ def params():
     """PENA_LAGR (E = 5.8e9) and E (PENA_LAGR = 100; SIGM_C and GC scaled with E, a change of the stress
     unit) on the quadratic cells, rows row12 and diag, k = 1, 6, 12: target/stability/params.csv and
     params.md (per value, the worst error and condition over the three k)."""
-    cells = ["QUAD8", "HEXA20"]
+    cells = [c for c in ("QUAD8", "HEXA20") if c in CELLS]
+    if not cells:
+        return
     out = []
     with tempfile.TemporaryDirectory() as work:
         for cell in cells:

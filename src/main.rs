@@ -141,10 +141,12 @@ enum MeshCmd {
     /// groups XMIN, XMAX, YMIN, YMAX, ZMIN, ZMAX and cell group VOLUME;
     /// each boundary name is both a cell group and a node group).
     Box {
-        /// QUAD4, QUAD8, HEXA8 or HEXA20.
+        /// QUAD4, QUAD8, TRIA3, TRIA6 (two per quadrangle), HEXA8, HEXA20,
+        /// TETRA4, TETRA10 (six per hexahedron), PENTA6 or PENTA15 (two per
+        /// hexahedron).
         #[arg(long)]
         cell: String,
-        /// Cells per axis: NX,NY[,NZ].
+        /// Cells per axis (quadrangles or hexahedra): NX,NY[,NZ].
         #[arg(long, value_delimiter = ',', required = true)]
         n: Vec<usize>,
         /// Box lengths: LX,LY[,LZ].
@@ -199,7 +201,7 @@ fn mesh_command(action: MeshCmd) -> Result<(), aster::diag::Error> {
         }
         MeshCmd::Box { cell, n, size, output, name } => {
             let t = aster::mesh::CellType::from_name(&cell.to_ascii_uppercase()).ok_or_else(|| {
-                aster::diag::Error::runtime(format!("--cell {cell}: expected QUAD4, QUAD8, HEXA8 or HEXA20"))
+                aster::diag::Error::runtime(format!("--cell {cell}: expected {}", aster::mesh::generate::BOX_CELLS))
             })?;
             let m = aster::mesh::generate::box_mesh(t, &n, &size)?;
             aster::med::write_mesh(&output, &m, &name)?;

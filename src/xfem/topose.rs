@@ -1,6 +1,7 @@
 //! Sub-element cutting of an X-FEM parent cell by its interfaces, as
 //! Code_Aster's TOPOSE option (`te0514`) does it: primary split into
-//! quadratic simplices (`xdivte`, centre nodes `ndcent`), then, crack after
+//! quadratic simplices (`xdivte`, centre nodes `ndcent`; a TRIA6 or TETRA10
+//! parent is its own single simplex), then, crack after
 //! crack, each current simplex is cut (`xdecqu`, mid-points `xalgo2` /
 //! `xalg30` / `xalg40`, children `xdecqv`), with the junction skip and the
 //! Heaviside sign of every child. The split, the order and the numbering are
@@ -1558,19 +1559,23 @@ pub fn topose_boundary(
 /// in the cell's order (model order).
 pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Result<Cutting, String> {
     match t {
-        CellType::Quad8 | CellType::Hexa20 => cut_quadratic(t, t.dim(), coords, cracks),
+        // A TRIA6 or TETRA10 parent is its own single sub-cell (`xdivte`), cut as the sub-cells of
+        // a QUAD8 or HEXA20 are.
+        CellType::Quad8 | CellType::Hexa20 | CellType::Tria6 | CellType::Tetra10 => {
+            cut_quadratic(t, t.dim(), coords, cracks)
+        }
         CellType::Tria3 | CellType::Quad4 | CellType::Tetra4 | CellType::Penta6 | CellType::Hexa8 => {
             super::topose_linear::topose_linear(t, coords, cracks)
         }
         _ => Err(format!(
-            "TOPOSE: parent cell type {} is not supported (QUAD8, HEXA20 and the linear TRIA3, QUAD4, TETRA4, PENTA6, HEXA8)",
+            "TOPOSE: parent cell type {} is not supported (QUAD8, HEXA20, TRIA6, TETRA10 and the linear TRIA3, QUAD4, TETRA4, PENTA6, HEXA8)",
             t.name()
         )),
     }
 }
 
 /// TOPOSE of a quadratic cell of dimension `t.dim()` in a mesh of dimension
-/// `ndim` (a QUAD8 or HEXA20 parent, or a SEG3 / TRIA6 / QUAD8 boundary cell).
+/// `ndim` (a QUAD8, HEXA20, TRIA6 or TETRA10 parent, or a SEG3 / TRIA6 / QUAD8 boundary cell).
 fn cut_quadratic(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Result<Cutting, String> {
     let (dim, nno) = (t.dim(), t.nnodes());
     if coords.len() != nno {
@@ -1616,7 +1621,7 @@ fn cut_quadratic(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackI
     let mut subs: Vec<Vec<Wp>> = match t {
         CellType::Quad8 => QUAD8_SPLIT.iter().map(|s| s.to_vec()).collect(),
         CellType::Hexa20 => HEXA20_SPLIT.iter().map(|s| s.to_vec()).collect(),
-        // SEG3, TRIA6: the cell itself (`xdivte`).
+        // SEG3, TRIA6, TETRA10: the cell itself (`xdivte`).
         _ => vec![(1..=nno).map(|j| N(j as u8)).collect()],
     };
     let mut heav: Vec<Vec<i32>> = vec![vec![0; cracks.len()]; subs.len()];
@@ -1985,9 +1990,53 @@ mod tests {
         }
     }
 
+    /// TRIA6 and TETRA10 parents are their own single sub-cell (`xdivte`):
+    /// cut through vertices, along edges, near nodes and anywhere, the
+    /// sub-cells tile the parent, both sides get sub-cells when the interface
+    /// crosses it.
+    #[test]
+    fn tria6_and_tetra10_parents_are_cut_as_one_sub_cell() {
+        // Skewed straight-sided cells: x = x0 + A ξ.
+        let a = [[2.0, 0.3, -0.2], [0.1, 1.5, 0.4], [0.2, -0.1, 1.8]];
+        let x0 = [0.5, -0.25, 0.75];
+        for t in [CellType::Tria6, CellType::Tetra10] {
+            let dim = t.dim();
+            let c: Vec<[f64; 3]> = crate::fem::reference::node_coords(t)
+                .iter()
+                .map(|xi| {
+                    [0, 1, 2]
+                        .map(|i| if i < dim { x0[i] + (0..dim).map(|j| a[i][j] * xi[j]).sum::<f64>() } else { 0.0 })
+                })
+                .collect();
+            let vert = |i: usize| c[i];
+            // Planes through the centroid, through one and two vertices (an edge in 2D), and near them.
+            let g: [f64; 3] = [0, 1, 2].map(|i| (0..=dim).map(|v| vert(v)[i]).sum::<f64>() / (dim + 1) as f64);
+            let normals: [[f64; 3]; 4] = [[1.0, 0.0, 0.0], [0.3, 1.0, -0.4], [1.0, -1.0, 0.5], [0.0, 0.2, 1.0]];
+            for n in normals {
+                let n = if dim == 2 { [n[0], n[1], 0.0] } else { n };
+                let dot = |p: [f64; 3]| n[0] * p[0] + n[1] * p[1] + n[2] * p[2];
+                for through in [g, vert(0), vert(1)] {
+                    for shift in [0.0, 1e-12, -1e-9, 1e-6, -1e-3, 0.1] {
+                        let d0 = dot(through) + shift;
+                        let lsn: Vec<f64> = c.iter().map(|&p| dot(p) - d0).collect();
+                        let cut = topose(t, &c, &[CrackInCell { lsn: lsn.clone(), master: None }])
+                            .unwrap_or_else(|e| panic!("{} {n:?} {shift}: {e}", t.name()));
+                        assert!(tiling_defect(t, &cut) < 1e-12, "{} {n:?} {shift}", t.name());
+                        let lo = lsn[..=dim].iter().cloned().fold(f64::INFINITY, f64::min);
+                        let hi = lsn[..=dim].iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+                        if lo < -1e-6 && hi > 1e-6 {
+                            let sides: Vec<i32> = cut.subcells.iter().map(|s| s.he[0]).collect();
+                            assert!(sides.contains(&-1) && sides.contains(&1), "{} {n:?} {shift}", t.name());
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn other_types_are_refused() {
-        let e = topose(CellType::Tria6, &[[0.0; 3]; 6], &[]).unwrap_err();
-        assert!(e.contains("TRIA6"), "{e}");
+        let e = topose(CellType::Penta15, &[[0.0; 3]; 15], &[]).unwrap_err();
+        assert!(e.contains("PENTA15"), "{e}");
     }
 }
