@@ -814,10 +814,8 @@ pub fn couplings(
         let nodes = &mesh.cells[c];
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
         let vt = crate::fem::elasticity::vertex_type(t);
-        // Active vertices (`xmulhm`): ends of cut edges of this cell, and
-        // vertices where the interface passes (vertex points, listed as
-        // degenerate edges (v, v)).
-        // No cut edge here (the interface passes through vertices only): no multiplier lives on these facets.
+        // Active vertices (`xmulhm`): ends of cut edges of this cell, and vertices where the interface passes
+        // (vertex points, listed as degenerate edges (v, v)). None: no multiplier lives on these facets.
         let Some((active, pk)) = cell_packets(mesh, c, packet_of, active_edges)? else { continue };
         let npk = pk.len();
         // Cell unknown layout (XDofs::cell_dofs order).

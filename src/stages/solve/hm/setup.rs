@@ -201,11 +201,7 @@ pub fn loads_at(
                             return Err(e.at(a.span));
                         }
                         let density = |x: &[f64; 3], nr: &[f64; 3], _: &[f64]| fx(x, nr);
-                        if !add_enriched(a, p, c, &fe, Density::Traction(&density), &mut f)? {
-                            for (d, v) in dofs.iter().zip(&fe) {
-                                f[*d] += v;
-                            }
-                        }
+                        skin_load(a, p, c, &fe, &dofs, Density::Traction(&density), &mut f)?;
                         let pending = err.borrow_mut().take();
                         if let Some(e) = pending {
                             return Err(e.at(a.span));
@@ -233,11 +229,7 @@ pub fn loads_at(
                             };
                             nr.map(|v| -v * pv)
                         };
-                        if !add_enriched(a, p, c, &fe, Density::Traction(&density), &mut f)? {
-                            for (d, v) in dofs.iter().zip(&fe) {
-                                f[*d] += v;
-                            }
-                        }
+                        skin_load(a, p, c, &fe, &dofs, Density::Traction(&density), &mut f)?;
                         let pending = err.borrow_mut().take();
                         if let Some(e) = pending {
                             return Err(e.at(a.span));
@@ -262,15 +254,15 @@ pub fn loads_at(
                         if let Some(e) = pending {
                             return Err(e.at(a.span));
                         }
-                        if !add_enriched(a, p, c, &fe, Density::Flux(&q, dt), &mut f)? {
-                            for (k, v) in fe.iter().enumerate() {
+                        let dofs = (0..fe.len())
+                            .map(|k| {
                                 let n = mesh.cells[c][k];
-                                let d = num.dof(n, p.pre1).ok_or_else(|| {
+                                num.dof(n, p.pre1).ok_or_else(|| {
                                     a.err("EXCIT", format!("load {name}: node {} carries no PRE1", node_name(n)))
-                                })?;
-                                f[d] += v;
-                            }
-                        }
+                                })
+                            })
+                            .collect::<Result<Vec<usize>>>()?;
+                        skin_load(a, p, c, &fe, &dofs, Density::Flux(&q, dt), &mut f)?;
                         let pending = err.borrow_mut().take();
                         if let Some(e) = pending {
                             return Err(e.at(a.span));
@@ -375,6 +367,26 @@ type Traction<'a> = dyn Fn(&[f64; 3], &[f64; 3], &[f64]) -> [f64; 3] + 'a;
 enum Density<'a> {
     Traction(&'a Traction<'a>),
     Flux(&'a dyn Fn(&[f64; 3]) -> f64, f64),
+}
+
+/// A load on a skin cell: `fe`, its standard nodal values (`dim` per node for a traction, one per vertex
+/// for a flux), on the standard unknowns `dofs`, with on an X-FEM model its Heaviside parts
+/// ([`add_enriched`]).
+fn skin_load(
+    a: &Args,
+    p: &HmProblem,
+    c: usize,
+    fe: &[f64],
+    dofs: &[usize],
+    density: Density,
+    f: &mut [f64],
+) -> Result<()> {
+    if !add_enriched(a, p, c, fe, density, f)? {
+        for (d, v) in dofs.iter().zip(fe) {
+            f[*d] += v;
+        }
+    }
+    Ok(())
 }
 
 /// The Heaviside parts of a load on a skin cell of an X-FEM model, on the sets' unknowns. On a cell the
