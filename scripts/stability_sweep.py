@@ -69,7 +69,8 @@ FIN()
 
 CELLS = {"QUAD8": (2, "4,4", "4,4", 4.0), "QUAD4": (2, "4,4", "4,4", 4.0), "TRIA3": (2, "4,4", "4,4", 4.0), "TRIA6": (2, "4,4", "4,4", 4.0),
          "HEXA20": (3, "2,2,2", "2,2,2", 2.0), "HEXA8": (3, "2,2,2", "2,2,2", 2.0),
-         "TETRA4": (3, "2,2,2", "2,2,2", 2.0), "TETRA10": (3, "2,2,2", "2,2,2", 2.0), "PENTA6": (3, "2,2,2", "2,2,2", 2.0)}
+         "TETRA4": (3, "2,2,2", "2,2,2", 2.0), "TETRA10": (3, "2,2,2", "2,2,2", 2.0), "PENTA6": (3, "2,2,2", "2,2,2", 2.0),
+         "PENTA15": (3, "2,2,2", "2,2,2", 2.0)}
 # `python3 scripts/stability_sweep.py TRIA3 TETRA4` sweeps those families only (exploration: the
 # tables and plots are then of those families alone).
 if len(sys.argv) > 1:

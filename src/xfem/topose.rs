@@ -172,6 +172,17 @@ const HEXA20_SPLIT: [[Wp; 10]; 6] = [
     [N(3), N(8), N(4), N(6), C(4), N(16), N(11), C(3), C(6), C(7)],
 ];
 
+/// Primary split of a PENTA15 into three TETRA10 (`xdivte`, first configuration: no rotation); C(1..3)
+/// are the centres of the quadrangular faces (PENTA18 nodes 16–18, `ndcent`).
+const PENTA15_SPLIT: [[Wp; 10]; 3] = [
+    [N(5), N(4), N(6), N(1), N(13), N(15), N(14), C(1), N(10), C(3)],
+    [N(1), N(2), N(3), N(6), N(7), N(8), N(9), C(3), C(2), N(12)],
+    [N(6), N(2), N(5), N(1), C(2), N(11), N(14), C(3), N(7), C(1)],
+];
+
+/// The reference coordinates of PENTA15's face centres, in PENTA18's order (`ndcent`).
+const PENTA15_CENTRES: [[f64; 3]; 3] = [[0.0, 0.5, 0.5], [0.0, 0.0, 0.5], [0.0, 0.5, 0.0]];
+
 /// A point: reference coordinates in the parent and real coordinates.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Pt {
@@ -278,7 +289,7 @@ impl Ctx<'_> {
 pub(super) fn loncar(t: CellType, x: &[[f64; 3]]) -> f64 {
     match t {
         CellType::Hexa8 | CellType::Hexa20 => dist(&x[0], &x[6]),
-        CellType::Penta6 => (dist(&x[2], &x[0]) * dist(&x[2], &x[1]) * dist(&x[2], &x[5])).cbrt(),
+        CellType::Penta6 | CellType::Penta15 => (dist(&x[2], &x[0]) * dist(&x[2], &x[1]) * dist(&x[2], &x[5])).cbrt(),
         CellType::Seg2 | CellType::Seg3 => dist(&x[0], &x[1]),
         CellType::Tria3 | CellType::Quad4 | CellType::Tria6 | CellType::Quad8 => {
             (dist(&x[0], &x[1]) * dist(&x[0], &x[2])).sqrt()
@@ -1561,14 +1572,14 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
     match t {
         // A TRIA6 or TETRA10 parent is its own single sub-cell (`xdivte`), cut as the sub-cells of
         // a QUAD8 or HEXA20 are.
-        CellType::Quad8 | CellType::Hexa20 | CellType::Tria6 | CellType::Tetra10 => {
+        CellType::Quad8 | CellType::Hexa20 | CellType::Tria6 | CellType::Tetra10 | CellType::Penta15 => {
             cut_quadratic(t, t.dim(), coords, cracks)
         }
         CellType::Tria3 | CellType::Quad4 | CellType::Tetra4 | CellType::Penta6 | CellType::Hexa8 => {
             super::topose_linear::topose_linear(t, coords, cracks)
         }
         _ => Err(format!(
-            "TOPOSE: parent cell type {} is not supported (QUAD8, HEXA20, TRIA6, TETRA10 and the linear TRIA3, QUAD4, TETRA4, PENTA6, HEXA8)",
+            "TOPOSE: parent cell type {} is not supported (QUAD8, HEXA20, TRIA6, TETRA10, PENTA15 and the linear TRIA3, QUAD4, TETRA4, PENTA6, HEXA8)",
             t.name()
         )),
     }
@@ -1606,13 +1617,14 @@ fn cut_quadratic(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackI
         pmil: Vec::new(),
         lonref: loncar(t, coords),
     };
-    // Centre nodes (`ndcent`): QUAD8 and HEXA20 only.
-    let full = match t {
-        CellType::Quad8 => CellType::Quad9,
-        CellType::Hexa20 => CellType::Hexa27,
-        _ => t,
+    // Centre nodes (`ndcent`): QUAD8, HEXA20 and PENTA15 only.
+    let centres: &[[f64; 3]] = match t {
+        CellType::Quad8 => &node_coords(CellType::Quad9)[nno..],
+        CellType::Hexa20 => &node_coords(CellType::Hexa27)[nno..],
+        CellType::Penta15 => &PENTA15_CENTRES,
+        _ => &[],
     };
-    for xi in &node_coords(full)[nno..] {
+    for xi in centres {
         let p = ctx.to_real(*xi);
         let l = (0..cracks.len()).map(|k| ctx.interp(xi, k)).collect();
         ctx.centre.push(p);
@@ -1621,6 +1633,7 @@ fn cut_quadratic(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackI
     let mut subs: Vec<Vec<Wp>> = match t {
         CellType::Quad8 => QUAD8_SPLIT.iter().map(|s| s.to_vec()).collect(),
         CellType::Hexa20 => HEXA20_SPLIT.iter().map(|s| s.to_vec()).collect(),
+        CellType::Penta15 => PENTA15_SPLIT.iter().map(|s| s.to_vec()).collect(),
         // SEG3, TRIA6, TETRA10: the cell itself (`xdivte`).
         _ => vec![(1..=nno).map(|j| N(j as u8)).collect()],
     };
@@ -2036,7 +2049,31 @@ mod tests {
 
     #[test]
     fn other_types_are_refused() {
-        let e = topose(CellType::Penta15, &[[0.0; 3]; 15], &[]).unwrap_err();
-        assert!(e.contains("PENTA15"), "{e}");
+        let e = topose(CellType::Pyram13, &[[0.0; 3]; 13], &[]).unwrap_err();
+        assert!(e.contains("PYRAM13"), "{e}");
+    }
+
+    /// A PENTA15 parent is split into three TETRA10 with its face centres (`xdivte`) and cut: the
+    /// sub-cells tile it, and a plane across it leaves sub-cells on both sides.
+    #[test]
+    fn penta15_parents_are_split_and_cut() {
+        let a = [[2.0, 0.3, -0.2], [0.1, 1.5, 0.4], [0.2, -0.1, 1.8]];
+        let c: Vec<[f64; 3]> = crate::fem::reference::node_coords(CellType::Penta15)
+            .iter()
+            .map(|xi| [0, 1, 2].map(|i| 0.5 + (0..3).map(|j| a[i][j] * xi[j]).sum::<f64>()))
+            .collect();
+        let g: [f64; 3] = [0, 1, 2].map(|i| c[..6].iter().map(|p| p[i]).sum::<f64>() / 6.0);
+        for n in [[1.0, 0.0, 0.0], [0.3, 1.0, -0.4], [0.0, 0.2, 1.0]] {
+            let dot = |p: [f64; 3]| n[0] * p[0] + n[1] * p[1] + n[2] * p[2];
+            for shift in [0.0, 1e-9, -1e-3, 0.1] {
+                let d0 = dot(g) + shift;
+                let lsn: Vec<f64> = c.iter().map(|&p| dot(p) - d0).collect();
+                let cut = topose(CellType::Penta15, &c, &[CrackInCell { lsn, master: None }])
+                    .unwrap_or_else(|e| panic!("{n:?} {shift}: {e}"));
+                assert!(tiling_defect(CellType::Penta15, &cut) < 1e-12, "{n:?} {shift}");
+                let sides: Vec<i32> = cut.subcells.iter().map(|s| s.he[0]).collect();
+                assert!(sides.contains(&-1) && sides.contains(&1), "{n:?} {shift}");
+            }
+        }
     }
 }

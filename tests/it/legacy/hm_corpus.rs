@@ -4,11 +4,11 @@
 //! mesh in Code_Aster's text format (LIRE_MAILLAGE FORMAT='ASTER'). With X-FEM interfaces and coupled
 //! flow in the enriched elements: wtnv114i (3D_HM, FLUX_THM_REP on faces the interface crosses), wtnv144b
 //! (Terzaghi across an interface that cuts the loaded top, a pressure function jumping there) and wtnv144d
-//! (its 3D_HM version). Each with its number of OK lines.
+//! (its 3D_HM version); wtnv143d (3D_HM on PENTA15 parents). Each with its number of OK lines.
 
 use crate::common::*;
 
-const CASES: [(&str, usize); 8] = [
+const CASES: [(&str, usize); 9] = [
     ("wtnv113a", 24),
     ("wtnv113c", 24),
     ("wtnv114a", 20),
@@ -17,6 +17,7 @@ const CASES: [(&str, usize); 8] = [
     ("wtnv114i", 8),
     ("wtnv144b", 166),
     ("wtnv144d", 66),
+    ("wtnv143d", 16),
 ];
 
 #[test]
