@@ -40,10 +40,7 @@ ASTER=$ROOT/target/release/aster
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 
-load() { cut -d' ' -f1 /proc/loadavg; }
-wall() { awk '/Elapsed \(wall clock\)/ { n = split($NF, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i]; printf "%.2f", s }' "$1"; }
-rss() { awk '/Maximum resident/ { printf "%.2f", $NF / 1048576 }' "$1"; }
-cmd_time() { awk -v c="$2" '$0 ~ "# End of command #[0-9]+ " c " " { s += $(NF - 1) } END { printf "%.2f", s }' "$1"; }
+. "$ROOT/scripts/bench_lib.sh"
 
 # The consolidation scene: MODEL, the side conditions and the load skin are filled in per dimension.
 consolidation() {

@@ -26,9 +26,7 @@ ASTER=$ROOT/target/release/aster
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 
-load() { cut -d' ' -f1 /proc/loadavg; }
-wall() { awk '/Elapsed \(wall clock\)/ { n = split($NF, t, ":"); s = 0; for (i = 1; i <= n; i++) s = s * 60 + t[i]; printf "%.2f", s }' "$1"; }
-rss() { awk '/Maximum resident/ { printf "%.2f", $NF / 1048576 }' "$1"; }
+. "$ROOT/scripts/bench_lib.sh"
 
 echo "## junction_2d against GetFEM (OPENBLAS_NUM_THREADS=$OPENBLAS_NUM_THREADS for GetFEM)"
 echo

@@ -183,6 +183,25 @@ const PENTA15_SPLIT: [[Wp; 10]; 3] = [
 /// The reference coordinates of PENTA15's face centres, in PENTA18's order (`ndcent`).
 const PENTA15_CENTRES: [[f64; 3]; 3] = [[0.0, 0.5, 0.5], [0.0, 0.0, 0.5], [0.0, 0.5, 0.0]];
 
+/// The vertex shared by the 1-based edges `a1` and `a2` of `ed` and their other ends: (a, b, c) with b on
+/// `a1` and c on `a2` (the last match, as the Fortran loops); zeros when an edge is 0 (a vertex point).
+pub(super) fn vertex_and_ends<const N: usize>(ed: &[[usize; N]], a1: usize, a2: usize) -> (usize, usize, usize) {
+    let (mut a, mut b, mut c) = (0, 0, 0);
+    if a1 == 0 || a2 == 0 {
+        return (a, b, c);
+    }
+    for i in 0..2 {
+        for j in 0..2 {
+            if ed[a1 - 1][i] == ed[a2 - 1][j] {
+                a = ed[a1 - 1][i];
+                b = ed[a1 - 1][1 - i];
+                c = ed[a2 - 1][1 - j];
+            }
+        }
+    }
+    (a, b, c)
+}
+
 /// A point: reference coordinates in the parent and real coordinates.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Pt {
@@ -1259,23 +1278,7 @@ impl Ctx<'_> {
             let midn = |p: usize, q: usize| -> usize {
                 ed.iter().find(|r| (r[0] == p && r[1] == q) || (r[0] == q && r[1] == p)).map(|r| r[2]).unwrap_or(0)
             };
-            // a: the vertex shared by the edges of two points; b, c: their other ends.
-            let abc = |a1: usize, a2: usize| -> (usize, usize, usize) {
-                let (mut a, mut b, mut c) = (0, 0, 0);
-                if a1 == 0 || a2 == 0 {
-                    return (a, b, c);
-                }
-                for i in 0..2 {
-                    for j in 0..2 {
-                        if ed[a1 - 1][i] == ed[a2 - 1][j] {
-                            a = ed[a1 - 1][i];
-                            b = ed[a1 - 1][1 - i];
-                            c = ed[a2 - 1][1 - j];
-                        }
-                    }
-                }
-                (a, b, c)
-            };
+            let abc = |a1: usize, a2: usize| vertex_and_ends(ed, a1, a2);
             // The mid-node of the edge from a vertex point (a working id) to a local vertex.
             let mid_to = |ip: Wp, v: usize| -> usize {
                 ed.iter().find(|r| (0..2).any(|j| s(r[j]) == ip && r[1 - j] == v)).map(|r| r[2]).unwrap_or(0)

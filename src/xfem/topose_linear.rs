@@ -24,7 +24,7 @@ use crate::fem::reference::{map_to_real, node_coords, shape, shape_and_deriv};
 use crate::mesh::CellType;
 use crate::xfem::topose::Wp::{self, Inter as I, Node as N};
 use crate::xfem::topose::{
-    dist, loncar, master_chain, CrackInCell, CutPoint, Cutting, Inter, PointId, Pt, SubCell, V3,
+    dist, loncar, master_chain, vertex_and_ends, CrackInCell, CutPoint, Cutting, Inter, PointId, Pt, SubCell, V3,
 };
 
 /// Coincidence tolerance of the point lists (`cridist`), relative to the
@@ -284,22 +284,6 @@ fn xpente(n: &[Wp; 6]) -> [[Wp; 4]; 3] {
     [[n[0], n[4], n[1], n[5]], [n[3], n[4], n[0], n[5]], [n[0], n[1], n[2], n[5]]]
 }
 
-/// The vertex shared by edges `a1` and `a2` and their other ends: (a, b, c)
-/// with b on `a1` and c on `a2` (last match, as the Fortran loops).
-fn abc(ed: &[[usize; 2]], a1: usize, a2: usize) -> (usize, usize, usize) {
-    let (mut a, mut b, mut c) = (0, 0, 0);
-    for i in 0..2 {
-        for j in 0..2 {
-            if ed[a1 - 1][i] == ed[a2 - 1][j] {
-                a = ed[a1 - 1][i];
-                b = ed[a1 - 1][1 - i];
-                c = ed[a2 - 1][1 - j];
-            }
-        }
-    }
-    (a, b, c)
-}
-
 impl Ctx<'_> {
     /// Children of simplex `sub` (`xdecov`): connectivities with the local
     /// the intersection points of the simplex ([`Wp::Inter`]).
@@ -363,7 +347,7 @@ impl Ctx<'_> {
                             if a1 == 0 {
                                 return Err(bad("unexpected point order"));
                             }
-                            let (a, b, c) = abc(ed, a1, a2);
+                            let (a, b, c) = vertex_and_ends(ed, a1, a2);
                             if a * b * c == 0 {
                                 return Err(bad("the two cut edges share no vertex"));
                             }
@@ -408,7 +392,7 @@ impl Ctx<'_> {
                             if a1 != 0 || a2 == 0 || a3 == 0 {
                                 return Err(bad("unexpected point order"));
                             }
-                            let (a, b, c) = abc(ed, a2, a3);
+                            let (a, b, c) = vertex_and_ends(ed, a2, a3);
                             if a * b * c == 0 {
                                 return Err(bad("the two cut edges share no vertex"));
                             }
@@ -418,7 +402,7 @@ impl Ctx<'_> {
                             out.push(vec![v, I(2), s(b), s(c)]);
                         }
                         _ => {
-                            let (a, b, c) = abc(ed, a1, a2);
+                            let (a, b, c) = vertex_and_ends(ed, a1, a2);
                             // The end of edge a3 other than a (the last one when neither is a).
                             let d = ed[a3 - 1].iter().rev().find(|&&v| v != a).copied().unwrap_or(0);
                             if a * b * c * d == 0 {
@@ -435,8 +419,8 @@ impl Ctx<'_> {
                     if a.contains(&0) {
                         return Err(bad("four points, some of them vertices"));
                     }
-                    let (va, vb, vc) = abc(ed, a[0], a[1]);
-                    let (vd, _, _) = abc(ed, a[2], a[3]);
+                    let (va, vb, vc) = vertex_and_ends(ed, a[0], a[1]);
+                    let (vd, _, _) = vertex_and_ends(ed, a[2], a[3]);
                     if va * vb * vc * vd == 0 {
                         return Err(bad("inconsistent cut edges"));
                     }

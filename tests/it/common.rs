@@ -147,3 +147,41 @@ pub fn resu_rows(resu: &str, intitule: &str) -> Vec<std::collections::BTreeMap<S
     }
     out
 }
+
+/// Run `comm` (as `one.comm`) in `dir` on a box mesh of `aster mesh box --cell CELL --n N --size SIZE` on
+/// unit 20: the run's exit status, message file and result file (empty where not written).
+pub fn run_on_box(
+    dir: &Path,
+    (cell, n, size): (&str, &str, &str),
+    comm: &str,
+) -> (std::process::ExitStatus, String, String) {
+    let mesh = dir.join("one.med");
+    let o = aster().args(["mesh", "box", "--cell", cell, "--n", n, "--size", size, "-o"]).arg(&mesh).output().unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let path = dir.join("one.comm");
+    std::fs::write(&path, comm).unwrap();
+    let o = aster()
+        .arg("run")
+        .arg(&path)
+        .arg("--out")
+        .arg(dir)
+        .arg("-q")
+        .arg("--unit")
+        .arg(format!("20={}", mesh.display()))
+        .output()
+        .unwrap();
+    let read = |ext: &str| std::fs::read_to_string(dir.join(format!("one.{ext}"))).unwrap_or_default();
+    (o.status, read("mess"), read("resu"))
+}
+
+/// The errors of the OK ANALYTIQUE lines on `ERR_*` columns of a .resu text (TEST_TABLE of an error
+/// formula against 0), in order.
+pub fn analytic_errors(resu: &str) -> Vec<f64> {
+    resu.lines()
+        .filter_map(|l| {
+            let t: Vec<&str> = l.split_whitespace().collect();
+            (t.len() >= 5 && t[0] == "OK" && t[1] == "ANALYTIQUE" && t[2].starts_with("ERR_"))
+                .then(|| t[4].parse().ok())?
+        })
+        .collect()
+}

@@ -8,6 +8,7 @@
 //! column of two cells whose common edge is the interface (along a row of
 //! nodes: no cell cut).
 
+use crate::common::run_on_box;
 use std::path::Path;
 use std::process::Command;
 
@@ -48,29 +49,9 @@ fn run(tag: &str, delta: f64, instants: &str) -> Vec<[f64; 5]> {
 /// Run the scene on a QUAD8 box (`--n`, `--size`) with the level set `ln`.
 fn run_on(tag: &str, (n, size): (&str, &str), ln: &str, delta: f64, instants: &str) -> Vec<[f64; 5]> {
     let dir = scratch!(tag);
-    let exe = env!("CARGO_BIN_EXE_aster");
-    let mesh = dir.join("one.med");
-    let o = Command::new(exe)
-        .args(["mesh", "box", "--cell", "QUAD8", "--n", n, "--size", size, "-o"])
-        .arg(&mesh)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let comm = dir.join("one.comm");
-    std::fs::write(&comm, scene(ln, delta, instants)).unwrap();
-    let o = Command::new(exe)
-        .arg("run")
-        .arg(&comm)
-        .args(["--out"])
-        .arg(&dir)
-        .arg("-q")
-        .arg("--unit")
-        .arg(format!("20={}", mesh.display()))
-        .output()
-        .unwrap();
-    let mess = std::fs::read_to_string(dir.join("one.mess")).unwrap_or_default();
+    let (status, mess, _) = run_on_box(&dir, ("QUAD8", n, size), &scene(ln, delta, instants));
     // The scene has no TEST_* command (this test checks the numbers): NO_TEST_RESU.
-    assert!(mess.contains("DIAGNOSTIC JOB : NO_TEST_RESU") && !mess.contains("<F>"), "{}\n{mess}", o.status);
+    assert!(mess.contains("DIAGNOSTIC JOB : NO_TEST_RESU") && !mess.contains("<F>"), "{status}\n{mess}");
     let _ = std::fs::remove_dir_all(&dir);
     parse(&mess)
 }

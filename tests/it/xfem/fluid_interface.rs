@@ -14,14 +14,7 @@ use aster::runner::{self, RunOptions};
 
 /// The worst |ERR_*| of the ANALYTIQUE lines of a .resu text, and their number.
 fn worst_error(resu: &str) -> (f64, usize) {
-    let errs: Vec<f64> = resu
-        .lines()
-        .filter_map(|l| {
-            let t: Vec<&str> = l.split_whitespace().collect();
-            (t.len() >= 5 && t[0] == "OK" && t[1] == "ANALYTIQUE" && t[2].starts_with("ERR_"))
-                .then(|| t[4].parse().ok())?
-        })
-        .collect();
+    let errs = analytic_errors(resu);
     (errs.iter().fold(0.0f64, |m, e| m.max(e.abs())), errs.len())
 }
 

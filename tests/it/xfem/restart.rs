@@ -4,8 +4,7 @@
 //! interface report of every step (λ_n, w_n, the damage counts, the dissipated energy), and the stored
 //! result: its orders, instants, displacements and cohesive multipliers (POST_RELEVE_T of every order).
 
-use std::path::Path;
-use std::process::Command;
+use crate::common::run_on_box;
 
 const SCENE: &str = r#"DEBUT(CODE="OUI")
 MA = LIRE_MAILLAGE(FORMAT="MED", UNITE=20)
@@ -41,30 +40,9 @@ fn snl(extra: &str, fin: f64) -> String {
 /// Run the scene with `steps` for its STAT_NON_LINE calls: (interface lines, the table of the result).
 fn run(tag: &str, steps: &str) -> (Vec<String>, String) {
     let dir = scratch!(tag);
-    let exe = env!("CARGO_BIN_EXE_aster");
-    let mesh = dir.join("one.med");
-    let o = Command::new(exe)
-        .args(["mesh", "box", "--cell", "QUAD8", "--n", "1,1", "--size", "1,1", "-o"])
-        .arg(&mesh)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let comm = dir.join("one.comm");
-    std::fs::write(&comm, SCENE.replace("STEPS\n", steps)).unwrap();
-    let o = Command::new(exe)
-        .arg("run")
-        .arg(&comm)
-        .args(["--out"])
-        .arg(&dir)
-        .arg("-q")
-        .arg("--unit")
-        .arg(format!("20={}", mesh.display()))
-        .output()
-        .unwrap();
-    let mess = std::fs::read_to_string(dir.join("one.mess")).unwrap_or_default();
-    assert!(mess.contains("DIAGNOSTIC JOB : NO_TEST_RESU") && !mess.contains("<F>"), "{}\n{mess}", o.status);
-    let resu = std::fs::read_to_string(dir.join("one.resu")).unwrap_or_default();
-    let _ = std::fs::remove_dir_all(Path::new(&dir));
+    let (status, mess, resu) = run_on_box(&dir, ("QUAD8", "1,1", "1,1"), &SCENE.replace("STEPS\n", steps));
+    assert!(mess.contains("DIAGNOSTIC JOB : NO_TEST_RESU") && !mess.contains("<F>"), "{status}\n{mess}");
+    let _ = std::fs::remove_dir_all(&dir);
     let lines = mess.lines().filter(|l| l.trim_start().starts_with("FISS: lambda_n")).map(|l| l.trim().to_string());
     (lines.collect(), resu)
 }
@@ -122,28 +100,8 @@ fn etat_init_refuses_what_it_cannot_continue() {
         snl("", 1.0)
     );
     let dir = scratch!("bad");
-    let exe = env!("CARGO_BIN_EXE_aster");
-    let mesh = dir.join("one.med");
-    let o = Command::new(exe)
-        .args(["mesh", "box", "--cell", "QUAD8", "--n", "1,1", "--size", "1,1", "-o"])
-        .arg(&mesh)
-        .output()
-        .unwrap();
-    assert!(o.status.success());
-    let comm = dir.join("one.comm");
-    std::fs::write(&comm, SCENE.replace("STEPS\n", &steps)).unwrap();
-    let _ = Command::new(exe)
-        .arg("run")
-        .arg(&comm)
-        .args(["--out"])
-        .arg(&dir)
-        .arg("-q")
-        .arg("--unit")
-        .arg(format!("20={}", mesh.display()))
-        .output()
-        .unwrap();
-    let mess = std::fs::read_to_string(dir.join("one.mess")).unwrap_or_default();
-    let _ = std::fs::remove_dir_all(Path::new(&dir));
+    let (_, mess, _) = run_on_box(&dir, ("QUAD8", "1,1", "1,1"), &SCENE.replace("STEPS\n", &steps));
+    let _ = std::fs::remove_dir_all(&dir);
     assert!(mess.contains("ETAT_INIT/NUME_ORDRE: RESU has no order 7"), "{mess}");
     assert!(!mess.contains("panicked"), "{mess}");
 }

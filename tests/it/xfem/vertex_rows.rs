@@ -21,14 +21,7 @@ fn run_scene(name: &str, ok_lines: usize, scale: f64) -> f64 {
     assert_eq!(o.diagnostic, "OK", "{name}: {:?}", o.error);
     assert_eq!(o.nook_count(), 0, "{name}");
     assert_eq!(o.ok_count(), ok_lines, "{name}: OK lines");
-    let errors: Vec<f64> = resu
-        .lines()
-        .filter_map(|l| {
-            let t: Vec<&str> = l.split_whitespace().collect();
-            (t.len() >= 5 && t[0] == "OK" && t[1] == "ANALYTIQUE" && t[2].starts_with("ERR_"))
-                .then(|| t[4].parse().ok())?
-        })
-        .collect();
+    let errors = analytic_errors(&resu);
     assert_eq!(errors.len(), ok_lines / 2, "{name}: every ANALYTIQUE line has its NON_REGRESSION twin");
     let worst = errors.iter().fold(0.0f64, |m, e| m.max(e.abs() / scale));
     println!("{name}: {} OK lines, worst node error {worst:.2e} U", o.ok_count());

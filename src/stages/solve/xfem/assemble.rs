@@ -75,13 +75,9 @@ pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> R
     let mut null_all: Vec<Vec<Vec<(usize, f64)>>> = Vec::new();
     // A node's jump in direction d is prescribed when every Heaviside unknown of the node in d is.
     let fixed_jump = |n: usize, d: usize| xd.sets[n].iter().all(|&b| fixed.contains(&(b + d)));
-    let lonref = {
-        let (lo, hi) = mesh.bounding_box().unwrap_or(([0.0; 3], [1.0; 3]));
-        (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
-    };
     for (zi, z) in s.zones.iter().enumerate() {
         let rule = discrete::facet_rule(ndim, z.order).map_err(|e| a.err("CONTACT", e))?;
-        let facets = discrete::facets(mesh, xm, z.crack, 1e-9 * lonref);
+        let facets = s.facets(z.crack);
         // Heaviside sets with no facet to couple the sides they separate:
         // the interface would open freely where the scene glues it. An interface along a row or plane of
         // nodes has its facets on the cells of its − side; none is left when those are not in the model.
@@ -100,7 +96,7 @@ pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> R
             mesh,
             xm,
             z.crack,
-            &facets,
+            facets,
             &rule,
             &z.packets,
             &z.packet_of,
@@ -109,7 +105,7 @@ pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> R
             &fixed_jump,
         )
         .map_err(crack_err)?;
-        let cps = discrete::couplings(mesh, xm, z.crack, &facets, &rule, &z.packet_of, &z.edges, &dead, ndim)
+        let cps = discrete::couplings(mesh, xm, z.crack, facets, &rule, &z.packet_of, &z.edges, &dead, ndim)
             .map_err(crack_err)?;
         let mut m = vec![0.0; z.packets.len()];
         for cp in &cps {

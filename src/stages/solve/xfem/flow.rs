@@ -100,16 +100,12 @@ impl Flow {
             }
             fracture.push(v);
         }
-        let lonref = {
-            let (lo, hi) = mesh.bounding_box().unwrap_or(([0.0; 3], [1.0; 3]));
-            (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
-        };
         let mut exchanges = Vec::new();
         let mut rho_f = Vec::new();
         for z in &s.zones {
             let rule = discrete::facet_rule(ndim, z.order).map_err(|e| a.err("CONTACT", e))?;
-            let facets = discrete::facets(mesh, xm, z.crack, 1e-9 * lonref);
-            let ex = discrete::exchanges(mesh, xm, z.crack, &facets, &rule, &z.packet_of, &z.edges)
+            let facets = s.facets(z.crack);
+            let ex = discrete::exchanges(mesh, xm, z.crack, facets, &rule, &z.packet_of, &z.edges)
                 .map_err(|e| a.err("CONTACT", format!("{}: {e}", xm.crack_names[z.crack])))?;
             let mut v = Vec::new();
             for e in ex {

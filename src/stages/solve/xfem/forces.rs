@@ -22,10 +22,6 @@ pub fn external(a: &Args, s: &Setup, t: f64, pressure: Option<&PorePressure>) ->
     if let Some(p) = pressure {
         biot(a, s, p, f.get_or_insert_with(|| vec![0.0; xd.n]))?;
     }
-    let lonref = {
-        let (lo, hi) = mesh.bounding_box().unwrap_or(([0.0; 3], [1.0; 3]));
-        (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max)
-    };
     for (lc, mult) in loads(a, t)? {
         let data = lc.data();
         let ConceptData::Load(load) = &*data else { continue };
@@ -56,10 +52,8 @@ pub fn external(a: &Args, s: &Setup, t: f64, pressure: Option<&PorePressure>) ->
             // those cells.
             let loaded: std::collections::BTreeSet<usize> = xm.cracks[*crack].heaviside_cells.iter().copied().collect();
             for g in 0..xm.cracks.len() {
-                let facets: Vec<discrete::Facet> = discrete::facets(mesh, xm, g, 1e-9 * lonref)
-                    .into_iter()
-                    .filter(|fc| loaded.contains(&fc.cell))
-                    .collect();
+                let facets: Vec<discrete::Facet> =
+                    s.facets(g).iter().filter(|fc| loaded.contains(&fc.cell)).cloned().collect();
                 let cells = discrete::lip_pressure(mesh, xm, g, &facets, &rule, ndim, &p).map_err(|e| {
                     a.err(
                         "EXCIT",

@@ -14,7 +14,7 @@ use crate::stages::core::newton::Convergence;
 use crate::stages::core::problem::mat_param;
 use crate::stages::core::solver::{solveur, Solveur};
 use crate::xfem::czm::CzmParams;
-use crate::xfem::discrete::XDofs;
+use crate::xfem::discrete::{Facet, XDofs};
 use crate::xfem::model::{ContactKind, XfemModel};
 use crate::xfem::mortar;
 use std::rc::Rc;
@@ -42,6 +42,8 @@ pub struct Setup {
     pub newton_note: Option<String>,
     /// The interface hydraulics, when the scene leaves hydraulic unknowns free (`flow`).
     pub flow: Option<super::flow::Flow>,
+    /// Per crack, its facets (`discrete::facets`), built on first use.
+    facets: Vec<std::cell::OnceCell<Vec<Facet>>>,
 }
 
 impl Setup {
@@ -52,6 +54,16 @@ impl Setup {
     /// The number of unknowns: the mechanical ones, and the flow's with free hydraulics.
     pub fn nunk(&self) -> usize {
         self.flow.as_ref().map_or(self.xd.n, |f| f.n)
+    }
+
+    /// The facets of crack `g` (model order): the faces of its sub-cells on the interface, a point being on
+    /// it within 1e-9 of the mesh's largest extent.
+    pub fn facets(&self, g: usize) -> &[Facet] {
+        self.facets[g].get_or_init(|| {
+            let (lo, hi) = self.mesh.bounding_box().unwrap_or(([0.0; 3], [1.0; 3]));
+            let lonref = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+            crate::xfem::discrete::facets(&self.mesh, &self.xm, g, 1e-9 * lonref)
+        })
     }
 
     /// The material of a cell.
@@ -124,6 +136,7 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
     }
     let xd = XDofs::new(&mesh, &model_cells, &xm, md.dim(), &npk);
     let newton_note = crate::stages::core::newton::newton_note(a);
+    let ncracks = xm.cracks.len();
     Ok(Setup {
         mesh,
         xm,
@@ -141,6 +154,7 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
         xd,
         newton_note,
         flow: None,
+        facets: (0..ncracks).map(|_| std::cell::OnceCell::new()).collect(),
     })
 }
 
