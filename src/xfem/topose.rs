@@ -183,6 +183,74 @@ const PENTA15_SPLIT: [[Wp; 10]; 3] = [
 /// The reference coordinates of PENTA15's face centres, in PENTA18's order (`ndcent`).
 const PENTA15_CENTRES: [[f64; 3]; 3] = [[0.0, 0.5, 0.5], [0.0, 0.0, 0.5], [0.0, 0.5, 0.0]];
 
+/// The relabelling of a prism's vertices under which `xdivte`'s primary split is conforming across
+/// cells: new local vertex (0-based) → the cell's own. `xdivte` splits each quadrangular face along the
+/// diagonal through its lowest-numbered vertex (faces 1-2-5-4 and 1-3-6-4 through 1, face 2-3-6-5
+/// through 2); two prisms sharing a face split it alike when "lowest" is read in an order both see,
+/// here the lexicographic order of the vertices' coordinates. With the local numbers the split of a
+/// shared face depends on each cell's numbering: where the level set is not linear on the face
+/// (adjusted near nodes by `xajuls`), the two cells then trace the interface differently on it, the
+/// Heaviside functions are not continuous across it and the scheme loses the linear fields by
+/// O(adjustment) (docs/xfem-small-subcells.md). Among the 12 symmetries of the prism, vertex 1 goes
+/// to the lowest vertex and the mirror of the triangle is taken when the lowest vertex of the
+/// opposite face would not be at 2 or 6.
+pub(super) fn prism_relabel(coords: &[[f64; 3]]) -> [usize; 6] {
+    if coords.len() < 6 {
+        return [0, 1, 2, 3, 4, 5]; // the caller refuses the cell
+    }
+    let lex = |a: usize, b: usize| {
+        (0..3).map(|k| coords[a][k].total_cmp(&coords[b][k])).find(|o| o.is_ne()).unwrap_or(std::cmp::Ordering::Equal)
+    };
+    let lowest = |vs: &mut dyn Iterator<Item = usize>| vs.min_by(|&a, &b| lex(a, b)).unwrap_or(0);
+    let m = lowest(&mut (0..6));
+    let (b, flip) = (m % 3, m >= 3);
+    let map = |tri: [usize; 3]| -> [usize; 6] {
+        let (lo, hi) = if flip { (3, 0) } else { (0, 3) };
+        [tri[0] + lo, tri[1] + lo, tri[2] + lo, tri[0] + hi, tri[1] + hi, tri[2] + hi]
+    };
+    let rot = map([b, (b + 1) % 3, (b + 2) % 3]);
+    // Face 2-3-6-5 (new numbers) is cut along 2-6: keep the rotation when its lowest vertex is 2 or 6.
+    let low = lowest(&mut [rot[1], rot[2], rot[4], rot[5]].into_iter());
+    if low == rot[1] || low == rot[5] {
+        rot
+    } else {
+        map([b, (b + 2) % 3, (b + 1) % 3])
+    }
+}
+
+/// A prism's primary split written in the numbering of [`prism_relabel`], in the cell's own numbers:
+/// vertices through the relabelling, mid-nodes (PENTA15 7–15) through their edges, the centres of
+/// the quadrangular faces (`C`) through their faces.
+pub(super) fn prism_split<const K: usize>(split: &[[Wp; K]], coords: &[[f64; 3]]) -> Vec<Vec<Wp>> {
+    const EDGES: [[usize; 2]; 9] = [[0, 1], [1, 2], [2, 0], [0, 3], [1, 4], [2, 5], [3, 4], [4, 5], [5, 3]];
+    const FACES: [[usize; 4]; 3] = [[0, 1, 4, 3], [1, 2, 5, 4], [0, 2, 5, 3]];
+    let r = prism_relabel(coords);
+    let same = |a: &[usize], b: &[usize]| a.len() == b.len() && a.iter().all(|x| b.contains(x));
+    let node = |j: usize| -> usize {
+        if j < 6 {
+            return r[j];
+        }
+        let e = EDGES[j - 6];
+        6 + EDGES.iter().position(|f| same(f, &[r[e[0]], r[e[1]]])).unwrap_or(j - 6)
+    };
+    let centre = |k: usize| -> usize {
+        let f: Vec<usize> = FACES[k].iter().map(|&v| r[v]).collect();
+        FACES.iter().position(|g| same(g, &f)).unwrap_or(k)
+    };
+    split
+        .iter()
+        .map(|t| {
+            t.iter()
+                .map(|&w| match w {
+                    Wp::Node(j) => Wp::Node(node(usize::from(j) - 1) as u8 + 1),
+                    Wp::Centre(k) => Wp::Centre(centre(usize::from(k) - 1) as u8 + 1),
+                    other => other,
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// The vertex shared by the 1-based edges `a1` and `a2` of `ed` and their other ends: (a, b, c) with b on
 /// `a1` and c on `a2` (the last match, as the Fortran loops); zeros when an edge is 0 (a vertex point).
 pub(super) fn vertex_and_ends<const N: usize>(ed: &[[usize; N]], a1: usize, a2: usize) -> (usize, usize, usize) {
@@ -1636,7 +1704,7 @@ fn cut_quadratic(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackI
     let mut subs: Vec<Vec<Wp>> = match t {
         CellType::Quad8 => QUAD8_SPLIT.iter().map(|s| s.to_vec()).collect(),
         CellType::Hexa20 => HEXA20_SPLIT.iter().map(|s| s.to_vec()).collect(),
-        CellType::Penta15 => PENTA15_SPLIT.iter().map(|s| s.to_vec()).collect(),
+        CellType::Penta15 => prism_split(&PENTA15_SPLIT, coords),
         // SEG3, TRIA6, TETRA10: the cell itself (`xdivte`).
         _ => vec![(1..=nno).map(|j| N(j as u8)).collect()],
     };
@@ -2054,6 +2122,53 @@ mod tests {
     fn other_types_are_refused() {
         let e = topose(CellType::Pyram13, &[[0.0; 3]; 13], &[]).unwrap_err();
         assert!(e.contains("PYRAM13"), "{e}");
+    }
+
+    /// Whatever a prism's local numbering, its primary split cuts each quadrangular face along the
+    /// diagonal through the face's lexicographically lowest vertex (so two cells sharing the face cut
+    /// it alike), and the three tetrahedra fill the prism.
+    #[test]
+    fn prism_splits_agree_on_shared_faces() {
+        let base =
+            [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]];
+        let faces = [[0, 1, 4, 3], [1, 2, 5, 4], [0, 2, 5, 3]];
+        let lex = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|k| a[k].total_cmp(&b[k])).find(|o| o.is_ne()).unwrap();
+        // The 12 numberings of the same prism: rotations and mirror of the triangle, either end first.
+        for tri in [[0, 1, 2], [1, 2, 0], [2, 0, 1], [0, 2, 1], [2, 1, 0], [1, 0, 2]] {
+            for flip in [false, true] {
+                let (lo, hi) = if flip { (3, 0) } else { (0, 3) };
+                let order: Vec<usize> = tri.iter().map(|&v| v + lo).chain(tri.iter().map(|&v| v + hi)).collect();
+                let c: Vec<[f64; 3]> = order.iter().map(|&v| base[v]).collect();
+                let tets = prism_split(&PENTA15_SPLIT, &c);
+                let v = |w: Wp| match w {
+                    Wp::Node(j) => usize::from(j) - 1,
+                    _ => unreachable!(),
+                };
+                let mut volume = 0.0;
+                for t in &tets {
+                    let p: Vec<V3> = t[..4].iter().map(|&w| V3::from(c[v(w)])).collect();
+                    volume += ((p[1] - p[0]).cross(&(p[2] - p[0])).dot(&(p[3] - p[0])) / 6.0).abs();
+                }
+                assert!((volume - 0.5).abs() < 1e-14, "{order:?}: volume {volume}");
+                for f in faces {
+                    // The face's vertices in this numbering, its lowest one, and the diagonal used.
+                    let fv: Vec<usize> = f.iter().map(|&b| order.iter().position(|&o| o == b).unwrap()).collect();
+                    let low = *fv.iter().min_by(|&&a, &&b| lex(&c[a], &c[b])).unwrap();
+                    // The face's diagonals are its opposite corners (positions 0–2 and 1–3).
+                    let mut used = std::collections::BTreeSet::new();
+                    for t in &tets {
+                        let ns: Vec<usize> = t[..4].iter().map(|&w| v(w)).collect();
+                        for (a, b) in [(fv[0], fv[2]), (fv[1], fv[3])] {
+                            if ns.contains(&a) && ns.contains(&b) {
+                                used.extend([a, b]);
+                            }
+                        }
+                    }
+                    assert_eq!(used.len(), 2, "{order:?}: face {f:?} is cut along {used:?}");
+                    assert!(used.contains(&low), "{order:?}: face {f:?} cut along {used:?}, lowest vertex {low}");
+                }
+            }
+        }
     }
 
     /// A PENTA15 parent is split into three TETRA10 with its face centres (`xdivte`) and cut: the

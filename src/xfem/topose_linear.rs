@@ -24,7 +24,8 @@ use crate::fem::reference::{map_to_real, node_coords, shape, shape_and_deriv};
 use crate::mesh::CellType;
 use crate::xfem::topose::Wp::{self, Inter as I, Node as N};
 use crate::xfem::topose::{
-    dist, loncar, master_chain, vertex_and_ends, CrackInCell, CutPoint, Cutting, Inter, PointId, Pt, SubCell, V3,
+    dist, loncar, master_chain, prism_split, vertex_and_ends, CrackInCell, CutPoint, Cutting, Inter, PointId, Pt,
+    SubCell, V3,
 };
 
 /// Coincidence tolerance of the point lists (`cridist`), relative to the
@@ -576,7 +577,7 @@ fn cut_linear(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackInCe
         CellType::Tria3 => (2, 3, vec![vec![N(1), N(2), N(3)]]),
         CellType::Quad4 => (2, 4, QUAD4_SPLIT.iter().map(|s| s.to_vec()).collect()),
         CellType::Tetra4 => (3, 4, vec![vec![N(1), N(2), N(3), N(4)]]),
-        CellType::Penta6 => (3, 6, PENTA6_SPLIT.iter().map(|s| s.to_vec()).collect()),
+        CellType::Penta6 => (3, 6, prism_split(&PENTA6_SPLIT, coords)),
         CellType::Hexa8 => (3, 8, HEXA8_SPLIT.iter().map(|s| s.to_vec()).collect()),
         _ => {
             return Err(format!(
