@@ -32,12 +32,22 @@ pub fn external(a: &Args, s: &Setup, t: f64, pressure: Option<&PorePressure>) ->
                 continue;
             }
             let LoadItem::CrackPressure { crack, name, value } = item else { continue };
-            // The rule of a quadratic facet under a pressure affine in space: exact on straight facets.
+            // A rule exact for a pressure affine in space on straight facets: the parent's shape
+            // functions restricted to a plane inclined to the axes are of degree 3 (HEXA8's xyz) or 4
+            // (HEXA20's x²yz, PENTA15), one more with the pressure: FPG7 (degree 5) in 3D; on a line,
+            // degree 2 (QUAD4's xy) or 3 (QUAD8's x²y), plus one: 2 or 4 Gauss points. With FPG3 the
+            // lips of HEXA8 cells were loaded unlike the sub-cells that carry them (1.5e-3·U off).
             let quadratic = s.model_cells.iter().any(|&c| {
                 let t = mesh.cell_types[c];
                 t.nnodes() > t.nvertices()
             });
-            let order = if quadratic { 4 } else { 2 };
+            let order = if ndim == 3 {
+                5
+            } else if quadratic {
+                4
+            } else {
+                2
+            };
             let rule = discrete::facet_rule(ndim, order).map_err(|e| a.err("EXCIT", e))?;
             let p = |x: &[f64; 3]| -> std::result::Result<f64, String> {
                 Ok(mult
