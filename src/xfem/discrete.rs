@@ -425,6 +425,19 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
                 if !shared && !pts[..mesh.dim].iter().all(|&q| xc.cutting.points[q].lsn[p].abs() <= tol) {
                     continue;
                 }
+                if !shared {
+                    // A face the master side splits (a branch cuts the master side's sub-cells, not the
+                    // slave side's: the junction point lies inside this face): the master side differs
+                    // along it, so the facets are the master side's pieces, each with its own side.
+                    let pieces = pieces_of(&xc.cutting, &faces, mesh.dim, p, s, f, tol);
+                    if !pieces.is_empty() {
+                        for (plus, g) in pieces {
+                            let xi: Vec<[f64; 3]> = g.iter().map(|&q| xc.cutting.points[q].xi).collect();
+                            out.push(Facet { cell: c, xi, slave: xc.signs[s].clone(), master: xc.signs[plus].clone() });
+                        }
+                        continue;
+                    }
+                }
                 let xi: Vec<[f64; 3]> = pts.iter().map(|&q| xc.cutting.points[q].xi).collect();
                 let slave = xc.signs[s].clone();
                 // Master side: the crack's sign flipped; branches of this
@@ -454,6 +467,80 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
         }
     }
     out
+}
+
+/// The faces of master-side (he = +1) sub-cells that lie on the interface inside face `f` of slave-side
+/// sub-cell `s`, with their sub-cell, when they cover it exactly (by measure); none otherwise (the
+/// face is not split, or the master side is in another cell: an interface along the parent's
+/// boundary). `tol` is a length.
+fn pieces_of(
+    cut: &super::topose::Cutting,
+    faces: &[Vec<usize>],
+    dim: usize,
+    p: usize,
+    s: usize,
+    f: &[usize],
+    tol: f64,
+) -> Vec<(usize, Vec<usize>)> {
+    let x = |q: usize| Vector3::from(cut.points[q].x);
+    let outer: Vec<Vector3<f64>> = f[..dim].iter().map(|&l| x(cut.subcells[s].nodes[l])).collect();
+    let measure = |v: &[Vector3<f64>]| {
+        if dim == 2 {
+            (v[1] - v[0]).norm()
+        } else {
+            (v[1] - v[0]).cross(&(v[2] - v[0])).norm() / 2.0
+        }
+    };
+    // Is point y in the face `outer` (within tol of its line or plane, barycentric coordinates ≥ 0)?
+    let inside = |y: Vector3<f64>| -> bool {
+        let scale = (outer[1] - outer[0]).norm().max(f64::MIN_POSITIVE);
+        let eps = 1e-9 * scale + tol;
+        if dim == 2 {
+            let e = outer[1] - outer[0];
+            let t = (y - outer[0]).dot(&e) / e.norm_squared();
+            let off = (y - outer[0] - t * e).norm();
+            off <= eps && t * scale >= -eps && (1.0 - t) * scale >= -eps
+        } else {
+            let (e1, e2) = (outer[1] - outer[0], outer[2] - outer[0]);
+            let n = e1.cross(&e2);
+            if n.norm() == 0.0 {
+                return false;
+            }
+            let r = y - outer[0];
+            if (r.dot(&n) / n.norm()).abs() > eps {
+                return false;
+            }
+            // Barycentric coordinates from the areas.
+            let b1 = r.cross(&e2).dot(&n) / n.norm_squared();
+            let b2 = e1.cross(&r).dot(&n) / n.norm_squared();
+            let lim = -eps / scale;
+            b1 >= lim && b2 >= lim && 1.0 - b1 - b2 >= lim
+        }
+    };
+    let mut pieces = Vec::new();
+    let mut covered = 0.0;
+    for (t, sc) in cut.subcells.iter().enumerate() {
+        if sc.he[p] != 1 {
+            continue;
+        }
+        for g in faces {
+            let pts: Vec<usize> = g.iter().map(|&l| sc.nodes[l]).collect();
+            if !pts[..dim].iter().all(|&q| cut.points[q].lsn[p].abs() <= tol) {
+                continue;
+            }
+            let vs: Vec<Vector3<f64>> = pts[..dim].iter().map(|&q| x(q)).collect();
+            let centre = vs.iter().sum::<Vector3<f64>>() / dim as f64;
+            if vs.iter().chain(std::iter::once(&centre)).all(|&v| inside(v)) {
+                covered += measure(&vs);
+                pieces.push((t, pts));
+            }
+        }
+    }
+    let whole = measure(&outer);
+    if pieces.is_empty() || (covered - whole).abs() > 1e-9 * whole.max(f64::MIN_POSITIVE) {
+        return Vec::new();
+    }
+    pieces
 }
 
 fn centroid(xi: &[[f64; 3]], dim: usize) -> [f64; 3] {
