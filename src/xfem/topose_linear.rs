@@ -128,10 +128,15 @@ impl Ctx<'_> {
 
     /// Level set of a vertex as `xdecou` reads it on an edge: the
     /// interpolated value at an intersection point is set to 0 below
-    /// lonref·1e-4.
+    /// lonref·1e-12 (round-off of a point on the level set). Code_Aster's
+    /// `xdecou` sets it to 0 below lonref·1e-4: that moves a branch onto an
+    /// earlier crack's intersection point in one cell and not in the one
+    /// beside it, whose cuttings then disagree on the shared face (a junction
+    /// 1e-4…1e-6·h from a node: 9.3e-6·U on QUAD4, 2.5e-6·U on HEXA8;
+    /// docs/xfem-small-subcells.md).
     fn edge_lsn(&self, id: Wp, crack: usize) -> Result<f64, String> {
         let v = self.vertex_lsn(id, crack, &[])?;
-        if !matches!(id, Wp::Node(_)) && v.abs() < self.lonref * 1e-4 {
+        if !matches!(id, Wp::Node(_)) && v.abs() < self.lonref * 1e-12 {
             Ok(0.0)
         } else {
             Ok(v)

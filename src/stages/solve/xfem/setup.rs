@@ -287,5 +287,9 @@ fn zones(
             });
         }
     }
+    // In the model's crack order whatever DEFI_CONTACT's order: the interface unknowns of a node in
+    // several cracks' packets are numbered crack by crack (LAGS_*, LAG2_*, ...), and the conditions
+    // between blocks count the cracks before a zone's own.
+    zones.sort_by_key(|z| z.crack);
     Ok((zones, iter_cont_maxi))
 }
