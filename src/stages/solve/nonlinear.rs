@@ -13,7 +13,7 @@ use crate::stages::core::newton::{
     inf_norm, instants, newton, newton_note, refuse_unsupported_options, Converged, Convergence, NewtonStep,
 };
 use crate::stages::core::problem::problem;
-use crate::stages::core::solver::{solve_reduced, solver_options, step_fields};
+use crate::stages::core::solver::{peak_memory, solve_reduced, solveur, step_fields};
 use crate::stages::Ctx;
 
 pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
@@ -45,7 +45,10 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
     let times = instants(a)?;
     let archive = crate::stages::core::newton::Archive::from_args(a, &times)?;
-    let opts = solver_options(a)?;
+    let sv = solveur(a)?;
+    let opts = sv.opts;
+    // The first factorization's report (method, ordering, condition estimate and the digits it costs).
+    let mut first: Option<solve::FactorInfo> = None;
     let nfull = p.numbering.ndofs();
     let mut u = vec![0.0; nfull];
     let mut steps = vec![Step { nume_ordre: 0, inst: times[0], fields: step_fields(&p, &u, true)? }];
@@ -62,6 +65,9 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 return Err(Error::runtime("factorization failed").at(a.span));
             }
         };
+        if first.is_none() {
+            first = Some(fact.info.clone());
+        }
         let mut step = LinearStep { scale: inf_norm(&rhs), k: &k, rhs: &rhs, x, r: Vec::new(), fact };
         let Converged { iters, rel: residual, .. } = newton(a, &conv, false, t, &mut step)?;
         let x = step.x;
@@ -73,8 +79,16 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         }
     }
     let note = newton_note(a).map(|n| n + "\n").unwrap_or_default();
+    let solver = first.map_or(String::new(), |info| {
+        format!(
+            "    solver    : SOLVEUR {}\n                {}; peak memory {}\n",
+            sv.mapping,
+            info.summary(),
+            peak_memory()
+        )
+    });
     ctx.io.mess(&format!(
-        "  STAT_NON_LINE ({}, RELATION='ELAS'): {} unknowns, Newton per step:\n{note}{log}",
+        "  STAT_NON_LINE ({}, RELATION='ELAS'): {} unknowns, Newton per step:\n{note}{log}{solver}",
         p.modelisation.name(),
         nfull
     ));

@@ -75,3 +75,19 @@ fn xfem_driver_archives_too() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("RESNL has no step at time 1"), "{err}");
 }
+
+/// The elastic STAT_NON_LINE reports its solver as the X-FEM and HM drivers do: the method, the condition
+/// estimate of the first factorization and the digits it costs (issue 10, point 3).
+#[test]
+fn elastic_newton_logs_the_condition_estimate() {
+    let (code, err, mess) = run_edited("snl-cond", "block_ramp_snl", "block_quad8.med", &[]);
+    assert_eq!(code, 0, "{err}");
+    let line = mess.lines().find(|l| l.contains("condition estimate")).unwrap_or_else(|| panic!("{mess}"));
+    // "condition estimate 8.2e2 (2.9 digits lost)"
+    let est = line.split("condition estimate ").nth(1).and_then(|s| s.split(" digits lost").next()).unwrap();
+    let (c, lost) = est.split_once(" (").unwrap();
+    let (c, lost): (f64, f64) = (c.parse().unwrap(), lost.parse().unwrap());
+    assert!((1.0..1e8).contains(&c), "{line}");
+    assert!((lost - c.log10()).abs() < 0.06, "{line}");
+    assert!(mess.contains("solver    : SOLVEUR METHODE='MUMPS'"), "{mess}");
+}
