@@ -160,6 +160,11 @@ const TETRA10_EDGES: [[usize; 3]; 6] = [[1, 2, 5], [1, 3, 7], [1, 4, 8], [2, 3, 
 /// centre.
 const QUAD8_SPLIT: [[Wp; 6]; 2] = [[N(1), N(2), N(4), N(5), C(1), N(8)], [N(2), N(3), N(4), N(6), N(7), C(1)]];
 
+/// The QUAD8 split along the other diagonal (1–3), tried when the first one's sub-cells fold (an
+/// interface nearly along the diagonal 2–4 and bent onto it by `xajuls`). The diagonal is inside the
+/// cell, so its neighbours' cuttings are not concerned. Not Code_Aster's (it has one QUAD8 split).
+const QUAD8_SPLIT_13: [[Wp; 6]; 2] = [[N(1), N(2), N(3), N(5), N(6), C(1)], [N(1), N(3), N(4), C(1), N(7), N(8)]];
+
 /// Primary split of a HEXA20 into six TETRA10 (`xdivte`, first
 /// configuration); 21..26 are the face centres (z−, y−, x+, y+, x−, z+) and
 /// 27 the body centre.
@@ -1643,7 +1648,11 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
     match t {
         // A TRIA6 or TETRA10 parent is its own single sub-cell (`xdivte`), cut as the sub-cells of
         // a QUAD8 or HEXA20 are.
-        CellType::Quad8 | CellType::Hexa20 | CellType::Tria6 | CellType::Tetra10 | CellType::Penta15 => {
+        CellType::Quad8 => match cut_quadratic(t, 2, coords, cracks) {
+            Err(e) if e.contains("do not tile") => cut_quadratic_split(t, 2, coords, cracks, true).map_err(|_| e),
+            r => r,
+        },
+        CellType::Hexa20 | CellType::Tria6 | CellType::Tetra10 | CellType::Penta15 => {
             cut_quadratic(t, t.dim(), coords, cracks)
         }
         CellType::Tria3 | CellType::Quad4 | CellType::Tetra4 | CellType::Penta6 | CellType::Hexa8 => {
@@ -1659,6 +1668,17 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
 /// TOPOSE of a quadratic cell of dimension `t.dim()` in a mesh of dimension
 /// `ndim` (a QUAD8, HEXA20, TRIA6 or TETRA10 parent, or a SEG3 / TRIA6 / QUAD8 boundary cell).
 fn cut_quadratic(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Result<Cutting, String> {
+    cut_quadratic_split(t, ndim, coords, cracks, false)
+}
+
+/// [`cut_quadratic`], a QUAD8 split along its diagonal 1–3 when `other_diagonal`.
+fn cut_quadratic_split(
+    t: CellType,
+    ndim: usize,
+    coords: &[[f64; 3]],
+    cracks: &[CrackInCell],
+    other_diagonal: bool,
+) -> Result<Cutting, String> {
     let (dim, nno) = (t.dim(), t.nnodes());
     if coords.len() != nno {
         return Err(format!("TOPOSE: {} needs {nno} node coordinates, got {}", t.name(), coords.len()));
@@ -1702,6 +1722,7 @@ fn cut_quadratic(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackI
         ctx.centre_lsn.push(l);
     }
     let mut subs: Vec<Vec<Wp>> = match t {
+        CellType::Quad8 if other_diagonal => QUAD8_SPLIT_13.iter().map(|s| s.to_vec()).collect(),
         CellType::Quad8 => QUAD8_SPLIT.iter().map(|s| s.to_vec()).collect(),
         CellType::Hexa20 => HEXA20_SPLIT.iter().map(|s| s.to_vec()).collect(),
         CellType::Penta15 => prism_split(&PENTA15_SPLIT, coords),

@@ -633,3 +633,22 @@ fn contact_zones_in_any_order() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The cut the property test's seed 1795568946461677518 drew: a line 1e-6·h from the vertex (1, 0) and
+/// 2.2e-6 rad from the diagonal along which TOPOSE splits the QUAD8 into two sub-triangles. `xajuls`
+/// bends it onto that diagonal and a sub-triangle map folds (TOPOSE refused the cell: "the sub-cells of
+/// the QUAD8 do not tile it"); the cell is now split along its other diagonal, and every node of the mesh
+/// and of the visual mesh matches the analytic field to 1e-8·U.
+#[test]
+fn a_quad8_cut_along_its_split_diagonal_is_split_along_the_other() {
+    let dir = scratch!("quad8_fold");
+    let (path, _) = mesh(&dir, CellType::Quad8);
+    let comm = dir.join("fold.comm");
+    let phi = "+7.071075594181181e-1*(X-1e0)+7.071060029541203e-1*(Y-0e0)+1e-6";
+    std::fs::write(&comm, scene(2, phi, 1e-8)).unwrap();
+    let opts = RunOptions { out_dir: Some(dir.join("out")), units: vec![(20, path, Dir::In)], echo: false };
+    let o = runner::run_comm(&comm, &opts);
+    assert_eq!(o.diagnostic, "OK", "{:?}", o.error);
+    assert_eq!((o.ok_count(), o.nook_count()), (16, 0));
+    let _ = std::fs::remove_dir_all(&dir);
+}
