@@ -14,7 +14,7 @@ Every node of the mesh and of the visual mesh is checked to 1e-8 U. Scenes:
 - lips: the same cuts with free lips loaded by the exact field's pressure (PRES_REP FISSURE, no
   contact): a check of the sub-cells, their sides, the facets and the lips' load that the glued scene
   (whose multipliers can absorb a wrong facet integral) does not make;
-- junction: FISS2 branching off FISS1, both through the node (1, 1) (3D: the row (1, y, 1)) shifted by
+- junction: FISS2 branching off FISS1, both through the node (2, 2) (3D: the row (1, y, 1)) shifted by
   10^-k h along their normals: the junction point 10^-k h from the node;
 - tilt: the interface through the node row X = 1 tilted by 10^-j rad, j = 1..8 (glued and lips);
 - uncut: the box without interface, the reference of the condition estimates (scaled condition =
@@ -96,9 +96,10 @@ ROWS = {
     2: {"row12": "(Y-0.5*X)/1.118033988749895", "diag": "(X+Y-2.0)/1.4142135623730951", "axis": "X-1.0"},
     3: {"row12": "(Z-0.5*X)/1.118033988749895", "diag": "(X+Y+Z-2.0)/1.7320508075688772", "axis": "X-1.0"},
 }
-# Junction: FISS1 and FISS2 through the node (1, 1) (3D: the row (1, y, 1)), FISS2 on FISS1's + side.
+# Junction: FISS1 and FISS2 through the node (2, 2) (3D: the row (1, y, 1)), FISS2 on FISS1's + side
+# (POINT).
 JUNCTION = {
-    2: ("(Y-0.5*X-0.5)/1.118033988749895", "(Y+0.7*X-1.7)/1.2206555615733703", "(1.0, 4.0)"),
+    2: ("(Y-0.5*X-1.0)/1.118033988749895", "(Y+0.7*X-3.4)/1.2206555615733703", "(1.0, 4.0)"),
     3: ("(Z-0.5*X-0.5)/1.118033988749895", "(Z+0.7*X-1.7)/1.2206555615733703", "(1.0, 1.0, 2.0)"),
 }
 KS = list(range(1, 15)) + [math.inf]
@@ -282,8 +283,6 @@ def main():
                         rows.append(run(work, cell, mesh, scene(dim, length, phi, variant=variant),
                                         scene=variant, row=row, k=kname(k)))
             f1, f2, _ = JUNCTION[dim]
-            if dim == 2:  # the 2D box is 4 × 4: FISS1 and FISS2 through the node (2, 2) instead
-                f1, f2 = "(Y-0.5*X-1.0)/1.118033988749895", "(Y+0.7*X-3.4)/1.2206555615733703"
             for k in KS:
                 d = delta(k)
                 rows.append(run(work, cell, mesh, scene(dim, length, f"{f1}-{d!r}", phi2=f"{f2}-{d!r}"),

@@ -1648,10 +1648,10 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
     match t {
         // A TRIA6 or TETRA10 parent is its own single sub-cell (`xdivte`), cut as the sub-cells of
         // a QUAD8 or HEXA20 are.
-        CellType::Quad8 => match cut_quadratic(t, 2, coords, cracks) {
-            Err(e) if e.contains("do not tile") => cut_quadratic_split(t, 2, coords, cracks, true).map_err(|_| e),
-            r => r,
-        },
+        // When the sub-triangles fold, the split along the other diagonal (inside the cell).
+        CellType::Quad8 => tiled(t, cut_quadratic_split(t, 2, coords, cracks, false)?).or_else(|e| {
+            cut_quadratic_split(t, 2, coords, cracks, true).and_then(|c| tiled(t, c)).map_err(|_| e)
+        }),
         CellType::Hexa20 | CellType::Tria6 | CellType::Tetra10 | CellType::Penta15 => {
             cut_quadratic(t, t.dim(), coords, cracks)
         }
@@ -1668,10 +1668,11 @@ pub fn topose(t: CellType, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Resul
 /// TOPOSE of a quadratic cell of dimension `t.dim()` in a mesh of dimension
 /// `ndim` (a QUAD8, HEXA20, TRIA6 or TETRA10 parent, or a SEG3 / TRIA6 / QUAD8 boundary cell).
 fn cut_quadratic(t: CellType, ndim: usize, coords: &[[f64; 3]], cracks: &[CrackInCell]) -> Result<Cutting, String> {
-    cut_quadratic_split(t, ndim, coords, cracks, false)
+    tiled(t, cut_quadratic_split(t, ndim, coords, cracks, false)?)
 }
 
-/// [`cut_quadratic`], a QUAD8 split along its diagonal 1–3 when `other_diagonal`.
+/// [`cut_quadratic`] before the tiling check, a QUAD8 split along its diagonal 1–3 when
+/// `other_diagonal`.
 fn cut_quadratic_split(
     t: CellType,
     ndim: usize,
@@ -1869,7 +1870,11 @@ fn cut_quadratic_split(
         .zip(heav)
         .map(|(s, he)| Ok(SubCell { nodes: s.iter().map(|&v| index(v)).collect::<Result<Vec<_>, String>>()?, he }))
         .collect::<Result<Vec<_>, String>>()?;
-    let cut = Cutting { points, subcells };
+    Ok(Cutting { points, subcells })
+}
+
+/// `cut` if its sub-cells tile the parent ([`tiling_defect`] within [`TILING_TOL`]), else the error.
+fn tiled(t: CellType, cut: Cutting) -> Result<Cutting, String> {
     let defect = tiling_defect(t, &cut);
     if defect.is_nan() || defect > TILING_TOL {
         return Err(format!(

@@ -37,13 +37,15 @@ pub fn external(a: &Args, s: &Setup, t: f64, pressure: Option<&PorePressure>) ->
             // (HEXA20's x²yz, PENTA15), one more with the pressure: FPG7 (degree 5) in 3D; on a line,
             // degree 2 (QUAD4's xy) or 3 (QUAD8's x²y), plus one: 2 or 4 Gauss points. With FPG3 the
             // lips of HEXA8 cells were loaded unlike the sub-cells that carry them (1.5e-3·U off).
-            let quadratic = s.model_cells.iter().any(|&c| {
-                let t = mesh.cell_types[c];
-                t.nnodes() > t.nvertices()
-            });
+            let quadratic = || {
+                s.model_cells.iter().any(|&c| {
+                    let t = mesh.cell_types[c];
+                    t.nnodes() > t.nvertices()
+                })
+            };
             let order = if ndim == 3 {
                 5
-            } else if quadratic {
+            } else if quadratic() {
                 4
             } else {
                 2
