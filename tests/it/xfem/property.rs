@@ -304,7 +304,7 @@ fn run(types: &[CellType], cases: usize, tag: &str, tol: Tolerance) {
     while count < cases {
         let (t, (path, nodes)) = (types[i % types.len()], &meshes[i % types.len()]);
         i += 1;
-        let dim = if matches!(t, CellType::Quad4 | CellType::Quad8) { 2 } else { 3 };
+        let dim = t.dim();
         let (phi, label, class) = interface(&mut rng, dim, nodes);
         let Some(tol) = tol(t, class) else {
             skipped += 1;
@@ -391,6 +391,17 @@ fn random_straight_interfaces_everywhere() {
     run(&types, cases(400), "pall", |_, _| Some(1e-8));
 }
 
+/// TRIA3, TRIA6, TETRA10 and PENTA15 boxes, in turn, and every class, to 1e-8·U (300 cuts by default).
+/// TETRA4 and PENTA6 are left out: over 2 × 1200 cuts of the six simplex and prism families (seeds 3
+/// and 77) two of theirs failed, a PENTA6 plane 4.65e-7·U off and a TETRA4 plane through a node
+/// 1.29e-8·U off, both with a multiplier direction near null (condition 3e19 and 6e17; their free-lips
+/// scenes are exact: docs/stability.md).
+#[test]
+fn random_straight_interfaces_simplices_and_prisms() {
+    let types = [CellType::Tria3, CellType::Tria6, CellType::Tetra10, CellType::Penta15];
+    run(&types, cases(300), "psim", |_, _| Some(1e-8));
+}
+
 /// An interface along a row (2D) or plane (3D) of nodes — X = 1 through the
 /// middle of the box, exactly, and 1e-7·h, 1e-9·h and 1e-14·h from it, which
 /// xajuls snaps onto it — cuts no cell: its facets are the faces on the level
@@ -403,7 +414,7 @@ fn random_straight_interfaces_everywhere() {
 fn an_interface_along_a_row_of_nodes_is_glued() {
     let dir = scratch!("row");
     for t in [CellType::Quad8, CellType::Quad4, CellType::Hexa20, CellType::Hexa8] {
-        let dim = if matches!(t, CellType::Quad4 | CellType::Quad8) { 2 } else { 3 };
+        let dim = t.dim();
         let (path, _) = mesh(&dir, t);
         // Along the row, near it, and along it over half its length then across cells (a kink).
         for phi in ["X-1.0", "X-1.0-1.0e-7", "X-1.0+1.0e-9", "X-1.0-1.0e-14", "X-1.0-0.5*max(0.0, Y-1.0)"] {
