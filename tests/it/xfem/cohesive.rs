@@ -109,7 +109,8 @@ fn check_opening(steps: &[[f64; 5]]) {
         // Uniform opening: both packets (left and right edges) agree.
         assert!((l1 - l0).abs() <= 1e-9 * SIGMA_C && (w1 - w0).abs() <= 1e-12, "{s:?}");
         let (l, w) = (l0, w0);
-        if w == 0.0 {
+        // Round-off of the solve (the equilibrated LU leaves w ~ 1e-20 where the law is rigid).
+        if w.abs() <= 1e-12 * delta_c {
             // Rigid below the threshold (extrinsic law).
             assert!(l <= SIGMA_C * (1.0 + 1e-12), "{s:?}");
         } else if w < delta_c * (1.0 - 1e-9) {
@@ -136,8 +137,9 @@ fn compression_keeps_the_interface_shut() {
     assert_eq!(steps.len(), 2);
     for (k, s) in steps.iter().enumerate() {
         let [l0, l1, w0, w1, e] = *s;
-        // w_n = 0 exactly, no energy; λ_n = σ_yy = E ε_yy (ν = 0).
-        assert_eq!((w0, w1, e), (0.0, 0.0, 0.0), "{s:?}");
+        // w_n = 0 to round-off (1e-12 of δc), no energy; λ_n = σ_yy = E ε_yy (ν = 0).
+        let delta_c = 2.0 * GC / SIGMA_C;
+        assert!(w0.abs() <= 1e-12 * delta_c && w1.abs() <= 1e-12 * delta_c && e == 0.0, "{s:?}");
         let sigma = E * d * (k + 1) as f64 / 2.0;
         assert!((l0 - sigma).abs() <= 1e-9 * sigma.abs() && (l1 - sigma).abs() <= 1e-9 * sigma.abs(), "{s:?}");
     }
