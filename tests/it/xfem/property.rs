@@ -555,8 +555,8 @@ fn pressurised_lips_are_exact_on_every_cell_type() {
 /// 6.7e-8·U at k = 6); before the linear TOPOSE stopped snapping a branch onto an earlier crack's
 /// intersection points from 1e-4·lonref (`xdecou`), QUAD4 was 9.3e-6·U off at k = 4; with the zones
 /// of DEFI_CONTACT not in the model's crack order (FISS2's first here) TRIA3 did not converge. TRIA3
-/// and TETRA4 are left out: from k = 7 on (the node snapped by `xajuls`) they are 1.9e-8·U and
-/// 1.3e-8·U off, an error proportional to 10⁻ᵏ not traced (docs/stability.md).
+/// and TETRA4 are left out, with a multiplier direction near null: TRIA3 does not converge at k = 4,
+/// TETRA4 is 1.3e-8·U off at k = 7 (docs/stability.md).
 #[test]
 fn a_junction_near_a_node_is_exact() {
     let dir = scratch!("junction_node");
