@@ -408,6 +408,10 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
             .filter(|sc| sc.he[p] == 1)
             .flat_map(|sc| faces.iter().map(move |f| key(sc, f)))
             .collect();
+        let on_level_set = |pts: &[usize]| pts[..mesh.dim].iter().all(|&q| xc.cutting.points[q].lsn[p].abs() <= tol);
+        // The master-side sub-cells' faces on the level set (sub-cell, face points), gathered when a
+        // slave face is not shared.
+        let mut master_on: Option<Vec<(usize, Vec<usize>)>> = None;
         for (s, sc) in xc.cutting.subcells.iter().enumerate() {
             if sc.he[p] != -1 {
                 continue;
@@ -422,14 +426,20 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
                 // moved by xmilfa) the points of a face, and a junction point
                 // found on a curved sub-edge, are only near the zero set.
                 let shared = master_faces.contains(&key(sc, f));
-                if !shared && !pts[..mesh.dim].iter().all(|&q| xc.cutting.points[q].lsn[p].abs() <= tol) {
+                if !shared && !on_level_set(&pts) {
                     continue;
                 }
                 if !shared {
                     // A face the master side splits (a branch cuts the master side's sub-cells, not the
                     // slave side's: the junction point lies inside this face): the master side differs
                     // along it, so the facets are the master side's pieces, each with its own side.
-                    let pieces = pieces_of(&xc.cutting, &faces, mesh.dim, p, s, f, tol);
+                    let candidates = master_on.get_or_insert_with(|| {
+                        let plus = xc.cutting.subcells.iter().enumerate().filter(|(_, m)| m.he[p] == 1);
+                        plus.flat_map(|(t, m)| faces.iter().map(move |g| (t, g.iter().map(|&l| m.nodes[l]).collect())))
+                            .filter(|(_, g): &(usize, Vec<usize>)| on_level_set(g))
+                            .collect()
+                    });
+                    let pieces = pieces_of(&xc.cutting, candidates, mesh.dim, &pts, tol);
                     if !pieces.is_empty() {
                         for (plus, g) in pieces {
                             let xi: Vec<[f64; 3]> = g.iter().map(|&q| xc.cutting.points[q].xi).collect();
@@ -469,21 +479,19 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
     out
 }
 
-/// The faces of master-side (he = +1) sub-cells that lie on the interface inside face `f` of slave-side
-/// sub-cell `s`, with their sub-cell, when they cover it exactly (by measure); none otherwise (the
-/// face is not split, or the master side is in another cell: an interface along the parent's
-/// boundary). `tol` is a length.
+/// Those of the master-side faces on the interface `candidates` (sub-cell, face points) that lie inside
+/// the slave face of points `face`, when they cover it exactly (by measure); none otherwise (the face
+/// is not split, or the master side is in another cell: an interface along the parent's boundary).
+/// `tol` is a length.
 fn pieces_of(
     cut: &super::topose::Cutting,
-    faces: &[Vec<usize>],
+    candidates: &[(usize, Vec<usize>)],
     dim: usize,
-    p: usize,
-    s: usize,
-    f: &[usize],
+    face: &[usize],
     tol: f64,
 ) -> Vec<(usize, Vec<usize>)> {
     let x = |q: usize| Vector3::from(cut.points[q].x);
-    let outer: Vec<Vector3<f64>> = f[..dim].iter().map(|&l| x(cut.subcells[s].nodes[l])).collect();
+    let outer: Vec<Vector3<f64>> = face[..dim].iter().map(|&q| x(q)).collect();
     let measure = |v: &[Vector3<f64>]| {
         if dim == 2 {
             (v[1] - v[0]).norm()
@@ -519,21 +527,12 @@ fn pieces_of(
     };
     let mut pieces = Vec::new();
     let mut covered = 0.0;
-    for (t, sc) in cut.subcells.iter().enumerate() {
-        if sc.he[p] != 1 {
-            continue;
-        }
-        for g in faces {
-            let pts: Vec<usize> = g.iter().map(|&l| sc.nodes[l]).collect();
-            if !pts[..dim].iter().all(|&q| cut.points[q].lsn[p].abs() <= tol) {
-                continue;
-            }
-            let vs: Vec<Vector3<f64>> = pts[..dim].iter().map(|&q| x(q)).collect();
-            let centre = vs.iter().sum::<Vector3<f64>>() / dim as f64;
-            if vs.iter().chain(std::iter::once(&centre)).all(|&v| inside(v)) {
-                covered += measure(&vs);
-                pieces.push((t, pts));
-            }
+    for (t, pts) in candidates {
+        let vs: Vec<Vector3<f64>> = pts[..dim].iter().map(|&q| x(q)).collect();
+        let centre = vs.iter().sum::<Vector3<f64>>() / dim as f64;
+        if vs.iter().chain(std::iter::once(&centre)).all(|&v| inside(v)) {
+            covered += measure(&vs);
+            pieces.push((*t, pts.clone()));
         }
     }
     let whole = measure(&outer);
