@@ -895,56 +895,107 @@ pub fn couplings(
     ndim: usize,
 ) -> Result<Vec<Coupling>, String> {
     let mut out = Vec::new();
-    for (c, fs) in by_cell(facets) {
-        let t = mesh.cell_types[c];
-        let nodes = &mesh.cells[c];
-        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
-        let vt = crate::fem::elasticity::vertex_type(t);
-        // Active vertices (`xmulhm`): ends of cut edges of this cell, and vertices where the interface passes
-        // (vertex points, listed as degenerate edges (v, v)). None: no multiplier lives on these facets.
-        let Some((active, pk)) = cell_packets(mesh, c, packet_of, active_edges)? else { continue };
-        let npk = pk.len();
+    for mc in mortar_cells(mesh, facets, packet_of, active_edges)? {
+        let (c, nodes, npk) = (mc.cell, &mesh.cells[mc.cell], mc.packets.len());
         // Cell unknown layout (XDofs::cell_dofs order).
         let cols = cell_columns(nodes, xm, ndim);
         let nd = cols.len();
         let mut cm = vec![0.0; nd * npk * ndim];
         let mut mm = vec![0.0; ndim * npk * npk];
-        let dead_q: Vec<Vec<bool>> = (0..ndim).map(|q| pk.iter().map(|&k| dead.contains(&(k, q))).collect()).collect();
+        let dead_q: Vec<Vec<bool>> =
+            (0..ndim).map(|q| mc.packets.iter().map(|&k| dead.contains(&(k, q))).collect()).collect();
         let mut m = vec![0.0; npk];
-        let code = |s: &[i32]| super::levelset::region_code(s);
-        for f in fs {
-            let (rm, rp) = (code(&f.slave), code(&f.master));
-            for p in facet_points(t, &coords, nodes, &xm.lsn[g], f, rule)? {
-                let ff = shape(t, &p.xi);
-                let lin = shape(vt, &p.xi);
-                let phi = multiplier_functions(&lin, &active, &pk);
-                let phq: Vec<Vec<f64>> = dead_q.iter().map(|d| component_functions(&phi, d)).collect();
-                for k in 0..npk {
-                    m[k] += p.w * phi[k];
-                    for (q, ph) in phq.iter().enumerate() {
-                        for l in 0..npk {
-                            mm[q * npk * npk + k * npk + l] += p.w * ph[k] * ph[l];
-                        }
-                    }
-                }
-                // Jump of each unknown, projected on the local basis.
-                for (r, &(a, set, i)) in cols.iter().enumerate() {
-                    let Some(j) = set else { continue };
-                    let n = nodes[a];
-                    let jc = xm.psi(n, j, rp) - xm.psi(n, j, rm);
-                    if jc == 0.0 {
-                        continue;
-                    }
-                    let v = ff[a] * jc;
-                    for k in 0..npk {
-                        for q in 0..ndim {
-                            cm[r * npk * ndim + k * ndim + q] += p.w * v * p.basis[q][i] * phq[q][k];
-                        }
+        mc.for_each_point(mesh, xm, g, rule, |pt| {
+            let ff = shape(mesh.cell_types[c], &pt.point.xi);
+            let phq: Vec<Vec<f64>> = dead_q.iter().map(|d| component_functions(&pt.phi, d)).collect();
+            for k in 0..npk {
+                m[k] += pt.point.w * pt.phi[k];
+                for (q, ph) in phq.iter().enumerate() {
+                    for l in 0..npk {
+                        mm[q * npk * npk + k * npk + l] += pt.point.w * ph[k] * ph[l];
                     }
                 }
             }
+            // Jump of each unknown, projected on the local basis.
+            for (r, &(a, set, i)) in cols.iter().enumerate() {
+                let Some(j) = set else { continue };
+                let n = nodes[a];
+                let jc = xm.psi(n, j, pt.master) - xm.psi(n, j, pt.slave);
+                if jc == 0.0 {
+                    continue;
+                }
+                let v = ff[a] * jc;
+                for k in 0..npk {
+                    for q in 0..ndim {
+                        cm[r * npk * ndim + k * ndim + q] += pt.point.w * v * pt.point.basis[q][i] * phq[q][k];
+                    }
+                }
+            }
+        })?;
+        out.push(Coupling { cell: c, crack: g, packets: mc.packets, c: cm, mm, m });
+    }
+    Ok(out)
+}
+
+/// A cell holding facets of a crack whose vertices carry its multipliers (`xmulhm`): the ends of cut
+/// edges of the cell and the vertices where the interface passes (vertex points, listed as degenerate
+/// edges (v, v)), and the packets they carry, sorted.
+struct MortarCell<'f> {
+    cell: usize,
+    active: Vec<Option<usize>>,
+    packets: Vec<usize>,
+    facets: Vec<&'f Facet>,
+}
+
+/// A facet integration point of a [`MortarCell`]: the point, the region codes of the slave and master
+/// sides, the linear vertex functions and the multiplier functions of the packets there.
+struct MortarPoint {
+    point: FacetPoint,
+    slave: i32,
+    master: i32,
+    lin: Vec<f64>,
+    phi: Vec<f64>,
+}
+
+impl MortarCell<'_> {
+    /// Call `f` at every integration point of the cell's facets.
+    fn for_each_point(
+        &self,
+        mesh: &Mesh,
+        xm: &XfemModel,
+        g: usize,
+        rule: &QuadratureRule,
+        mut f: impl FnMut(&MortarPoint),
+    ) -> Result<(), String> {
+        let t = mesh.cell_types[self.cell];
+        let nodes = &mesh.cells[self.cell];
+        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+        let vt = crate::fem::elasticity::vertex_type(t);
+        for fc in &self.facets {
+            let (slave, master) = (super::levelset::region_code(&fc.slave), super::levelset::region_code(&fc.master));
+            for point in facet_points(t, &coords, nodes, &xm.lsn[g], fc, rule)? {
+                let lin = shape(vt, &point.xi);
+                let phi = multiplier_functions(&lin, &self.active, &self.packets);
+                f(&MortarPoint { point, slave, master, lin, phi });
+            }
         }
-        out.push(Coupling { cell: c, crack: g, packets: pk, c: cm, mm, m });
+        Ok(())
+    }
+}
+
+/// The cells of `facets` that carry multipliers ([`MortarCell`]), in cell order; the others hold no
+/// multiplier on their facets.
+fn mortar_cells<'f>(
+    mesh: &Mesh,
+    facets: &'f [Facet],
+    packet_of: &BTreeMap<usize, usize>,
+    active_edges: &BTreeSet<(usize, usize)>,
+) -> Result<Vec<MortarCell<'f>>, String> {
+    let mut out = Vec::new();
+    for (cell, fs) in by_cell(facets) {
+        if let Some((active, packets)) = cell_packets(mesh, cell, packet_of, active_edges)? {
+            out.push(MortarCell { cell, active, packets, facets: fs });
+        }
     }
     Ok(out)
 }
@@ -978,13 +1029,9 @@ pub fn exchanges(
     active_edges: &BTreeSet<(usize, usize)>,
 ) -> Result<Vec<Exchange>, String> {
     let mut out = Vec::new();
-    for (c, fs) in by_cell(facets) {
-        let t = mesh.cell_types[c];
-        let nodes = &mesh.cells[c];
-        let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
-        let vt = crate::fem::elasticity::vertex_type(t);
-        let Some((active, pk)) = cell_packets(mesh, c, packet_of, active_edges)? else { continue };
-        let npk = pk.len();
+    for mc in mortar_cells(mesh, facets, packet_of, active_edges)? {
+        let (c, nodes, npk) = (mc.cell, &mesh.cells[mc.cell], mc.packets.len());
+        let vt = crate::fem::elasticity::vertex_type(mesh.cell_types[c]);
         let mut cols = Vec::new();
         for (a, &n) in nodes[..vt.nnodes()].iter().enumerate() {
             cols.push((a, None));
@@ -992,30 +1039,25 @@ pub fn exchanges(
         }
         let nc = cols.len();
         let (mut ep, mut em, mut mm) = (vec![0.0; nc * npk], vec![0.0; nc * npk], vec![0.0; npk * npk]);
-        let code = |s: &[i32]| super::levelset::region_code(s);
-        for f in fs {
-            let (rm, rp) = (code(&f.slave), code(&f.master));
-            for p in facet_points(t, &coords, nodes, &xm.lsn[g], f, rule)? {
-                let lin = shape(vt, &p.xi);
-                let phi = multiplier_functions(&lin, &active, &pk);
-                for k in 0..npk {
-                    for l in 0..npk {
-                        mm[k * npk + l] += p.w * phi[k] * phi[l];
-                    }
-                }
-                for (r, &(a, set)) in cols.iter().enumerate() {
-                    let (sp, sm) = match set {
-                        None => (1.0, 1.0),
-                        Some(j) => (xm.psi(nodes[a], j, rp), xm.psi(nodes[a], j, rm)),
-                    };
-                    for k in 0..npk {
-                        ep[r * npk + k] += p.w * lin[a] * sp * phi[k];
-                        em[r * npk + k] += p.w * lin[a] * sm * phi[k];
-                    }
+        mc.for_each_point(mesh, xm, g, rule, |pt| {
+            let (w, lin, phi) = (pt.point.w, &pt.lin, &pt.phi);
+            for k in 0..npk {
+                for l in 0..npk {
+                    mm[k * npk + l] += w * phi[k] * phi[l];
                 }
             }
-        }
-        out.push(Exchange { cell: c, packets: pk, cols, ep, em, mm });
+            for (r, &(a, set)) in cols.iter().enumerate() {
+                let (sp, sm) = match set {
+                    None => (1.0, 1.0),
+                    Some(j) => (xm.psi(nodes[a], j, pt.master), xm.psi(nodes[a], j, pt.slave)),
+                };
+                for k in 0..npk {
+                    ep[r * npk + k] += w * lin[a] * sp * phi[k];
+                    em[r * npk + k] += w * lin[a] * sm * phi[k];
+                }
+            }
+        })?;
+        out.push(Exchange { cell: c, packets: mc.packets, cols, ep, em, mm });
     }
     Ok(out)
 }
