@@ -1062,69 +1062,132 @@ pub fn exchanges(
     Ok(out)
 }
 
-/// A singular value of the scaled coupling block (columns of unit norm) below which its direction is
-/// null ([`null_multipliers`]). Structural null directions come out at 1e-16 or below; an interface
-/// 1e-7 … 1e-11 from a row of nodes, or tilted by 1e-7 … 1e-5 rad from one, turns some of them into
-/// directions of 1e-10 … 1e-7, whose μ is then fixed only to round-off/σ² and can wake the cohesive law.
-/// Removing a direction of singular value σ drops a force of relative size σ on the jumps it tests,
-/// which the stiffness of near-sliver sets can magnify: on the random linear cuts of
-/// `tests/it/xfem/property.rs` (3 × 1500, docs/stability.md) the bound 1e-6 put "anywhere" cuts
-/// 1e-4·U off, 1e-9 left three near-node cuts unconverged or 2e-8·U off, and 1e-8 (as 1e-7) passed
-/// every cut, worst 3.8e-9·U.
-pub const NULL_SINGULAR_VALUE: f64 = 1e-8;
+/// The pivot below which a multiplier direction is null ([`null_multipliers`]): σ²/k, σ the direction's
+/// singular value in the scaled coupling block (columns of unit norm) and k the stiffness the bulk
+/// opposes to the free jump it tests, relative to the mean diagonal stiffness of its rows — the
+/// direction's pivot in the Schur complement of the bulk, relative to the others'. μ along a kept
+/// direction is fixed to round-off/pivot, and can wake the cohesive law where that is not small;
+/// removing it drops a force of relative size σ/k on the jump it tests. An interface 1e-7 … 1e-11 from
+/// a row of nodes, or tilted by 1e-7 … 1e-5 rad from one, turns structural null directions into
+/// directions with σ ∝ the distance and k ~ 1 (a TETRA4 junction 1e-7·h from a node: σ = 1.0e-8 and
+/// 1.5e-8, k = 1.1 and 0.9; kept, the first Newton step woke the law and the run ended 1.3e-8·U off;
+/// removed, 2e-9·U); a direction that tests the jump of a near-sliver set has k ≪ 1 (a TETRA4 plane
+/// 1e-2·h from a node: σ = 8.5e-10, k = 3.9e-6, a pivot of 2e-13; μ removed alone, the nodes were
+/// 1.1e-7·U off; kept, 8.6e-9·U) and goes with its jump ([`SLIVER_PIVOT`]: 2.5e-13·U). A bound on σ
+/// alone (1e-8 before) cannot tell them apart.
+pub const NULL_SCHUR: f64 = 1e-15;
 
-/// The multiplier directions of one crack that test no free jump: combinations v of the packets'
-/// components (packet, q of the local basis) with Cᵀv = 0 on every free unknown, the `dead` components
-/// left out. Such a v is a null direction of the whole tangent — μ along it changes no force on a free
-/// unknown, and its λ = Mμ/m is arbitrary and can wake the cohesive law. They appear on linear cells
-/// where the interface meets faces on which the jump is prescribed (`H1Y=0` …): each packet there brings
-/// one jump function per direction, and when the face is at an angle to the interface the prescribed
-/// directions mix n, τ1 and τ2, which [`dead_components`] (one component at a time) does not catch.
+/// A near-sliver jump ([`null_multipliers`]): a direction whose free jump the bulk opposes with less than
+/// this share of the mean stiffness tests the jump of a set whose region is a sliver.
+pub const SLIVER_STIFFNESS: f64 = 1e-3;
+
+/// The pivot below which a near-sliver direction is removed with the jump it tests: μ along it is no
+/// longer kept, and the free jump is held at zero. Removing μ alone drops a force of relative size σ/k,
+/// which the sliver's small stiffness magnifies (σ = 1.2e-10 and k = 1.9e-8 on a PENTA6 plane: 4.7e-7·U
+/// at the lips); keeping it costs 1/pivot in condition (σ = 2.0e-11 and k = 1.8e-7 on a TETRA4 plane
+/// through a node: 1.5e17, 4.5e-8·U).
+pub const SLIVER_PIVOT: f64 = 1e-10;
+
+/// A multiplier direction that tests no free jump, or too small a one to be solved for
+/// ([`null_multipliers`]).
+#[derive(Debug, Clone)]
+pub struct NullDirection {
+    /// (crack, packet, component, coefficient), the largest coefficient 1: μ is kept orthogonal to it.
+    pub mu: Vec<(usize, usize, usize, f64)>,
+    /// For a near-sliver jump, the free jump it tests, on the reduced unknowns of `map` (largest
+    /// coefficient 1): held at zero.
+    pub lock: Option<Vec<(usize, f64)>>,
+}
+
+/// Singular values at or below which a direction is null whatever its stiffness (structural null
+/// directions come out at 1e-16 or below).
+pub const STRUCTURAL_SINGULAR_VALUE: f64 = 1e-12;
+
+/// Singular values above which a direction is never null: σ²/k ≤ [`NULL_SCHUR`] needs σ below
+/// 1e-7 for any stiffness the bulk can oppose (k is at most a few times the mean diagonal).
+pub const NULL_SINGULAR_VALUE_MAX: f64 = 1e-6;
+
+/// The multiplier directions that test no free jump: combinations v of the packets' components
+/// (crack, packet, q of the local basis) with Cᵀv = 0 on every free unknown, the `dead` components left
+/// out. Such a v is a null direction of the whole tangent — μ along it changes no force on a free
+/// unknown, and its λ = Mμ/m is arbitrary and can wake the cohesive law. They appear
+/// - on linear cells where the interface meets faces on which the jump is prescribed (`H1Y=0` …): each
+///   packet there brings one jump function per direction, and when the face is at an angle to the
+///   interface the prescribed directions mix n, τ1 and τ2, which [`dead_components`] (one component at a
+///   time) does not catch;
+/// - at a junction, across the cracks: the multipliers of both cracks test the jumps of the same
+///   Heaviside unknowns in the cells both cut, and there can be more of them than independent jumps
+///   (a TETRA4 junction 1e-3·h from a node: each crack's block has full rank, the union does not).
 ///
-/// `map` eliminates the kinematic conditions: an unknown is replaced by the free unknowns it is a
-/// combination of (none when prescribed), so that conditions and relations both count. Only packets near prescribed jumps can carry such a direction:
-/// the search runs on the packets active in a cell with a non-free jump unknown and on the packets that
-/// share a cell with those. The null space of that block is exact for the whole matrix, since the other
-/// packets' columns are zero in it; it is taken from an SVD with the columns scaled to unit norm
-/// (singular values below [`NULL_SINGULAR_VALUE`]). Each direction is returned as (packet, component,
-/// coefficient), the largest coefficient 1; the caller keeps μ orthogonal to them (relations Σ v μ = 0),
-/// which changes no force on a free unknown.
+/// `couplings` holds every crack's couplings (`dead[crack]` its removed components). `map` eliminates
+/// the kinematic conditions: an unknown is replaced by the free unknowns it is a combination of (none
+/// when prescribed), so that conditions and relations both count. Only packets near prescribed jumps or
+/// in cells of several cracks can carry such a direction: the search runs on the packets active in a
+/// cell with a non-free jump unknown or with couplings of two cracks, and on the packets that share a
+/// cell with those. The null space of that block is exact for the whole matrix, since the other
+/// packets' columns are zero in it; it is taken from an SVD with the columns scaled to unit norm, a
+/// direction null when its pivot is below [`NULL_SCHUR`], or below [`SLIVER_PIVOT`] for the jump of a
+/// near-sliver set, which is then returned to be held at zero (`bulk`: the bulk elements' unknowns and
+/// matrices, for the stiffness behind each direction; without them it is taken as the mean). The caller
+/// keeps μ orthogonal to each direction (relations Σ v μ = 0), which changes no force on a free unknown.
+/// Holding a near-sliver jump g at zero (Σ g u = 0) is exact on a glued interface, whose jumps vanish,
+/// and elsewhere fixes the relative motion of a region of that stiffness share, as removing its set
+/// would.
 pub fn null_multipliers(
     couplings: &[Coupling],
     xd: &XDofs,
     mesh: &Mesh,
     ndim: usize,
-    dead: &BTreeSet<(usize, usize)>,
+    dead: &[&BTreeSet<(usize, usize)>],
     map: &DofMap,
-) -> Vec<Vec<(usize, usize, f64)>> {
+    bulk: Option<&[(&[usize], &[f64])]>,
+) -> Vec<NullDirection> {
     let rows_of = |cp: &Coupling| -> Vec<usize> { xd.cell_dofs(&mesh.cells[cp.cell]) };
-    // Packets of cells where a jump unknown is not free.
-    let mut near: BTreeSet<usize> = BTreeSet::new();
+    let mut cracks_of: BTreeMap<usize, BTreeSet<usize>> = BTreeMap::new();
+    for cp in couplings {
+        cracks_of.entry(cp.cell).or_default().insert(cp.crack);
+    }
+    // Cells where a jump unknown is not free, or that several cracks' multipliers test.
+    let mut near_cells: BTreeSet<usize> = BTreeSet::new();
     for cp in couplings {
         let np = cp.packets.len() * ndim;
-        let touched = rows_of(cp)
-            .iter()
-            .enumerate()
-            .any(|(r, &d)| !map.is_free(d) && cp.c[r * np..(r + 1) * np].iter().any(|v| *v != 0.0));
+        let touched = cracks_of[&cp.cell].len() > 1
+            || rows_of(cp)
+                .iter()
+                .enumerate()
+                .any(|(r, &d)| !map.is_free(d) && cp.c[r * np..(r + 1) * np].iter().any(|v| *v != 0.0));
         if touched {
-            near.extend(cp.packets.iter().copied());
+            near_cells.insert(cp.cell);
         }
     }
-    if near.is_empty() {
+    if near_cells.is_empty() {
         return Vec::new();
     }
-    let mut group = near.clone();
-    for cp in couplings {
-        if cp.packets.iter().any(|k| near.contains(k)) {
-            group.extend(cp.packets.iter().copied());
-        }
-    }
-    let cols: Vec<(usize, usize)> =
-        group.iter().flat_map(|&k| (0..ndim).map(move |q| (k, q))).filter(|kq| !dead.contains(kq)).collect();
-    let col_of: BTreeMap<(usize, usize), usize> = cols.iter().enumerate().map(|(i, &kq)| (kq, i)).collect();
+    let near: BTreeSet<(usize, usize)> = couplings
+        .iter()
+        .filter(|cp| near_cells.contains(&cp.cell))
+        .flat_map(|cp| cp.packets.iter().map(|&k| (cp.crack, k)))
+        .collect();
+    // The cells where a near packet is active, with every packet active there.
+    let cells: BTreeSet<usize> = couplings
+        .iter()
+        .filter(|cp| cp.packets.iter().any(|&k| near.contains(&(cp.crack, k))))
+        .map(|cp| cp.cell)
+        .collect();
+    let group: BTreeSet<(usize, usize)> = couplings
+        .iter()
+        .filter(|cp| cells.contains(&cp.cell))
+        .flat_map(|cp| cp.packets.iter().map(|&k| (cp.crack, k)))
+        .collect();
+    let cols: Vec<(usize, usize, usize)> = group
+        .iter()
+        .flat_map(|&(g, k)| (0..ndim).map(move |q| (g, k, q)))
+        .filter(|&(g, k, q)| !dead.get(g).is_some_and(|d| d.contains(&(k, q))))
+        .collect();
+    let col_of: BTreeMap<(usize, usize, usize), usize> = cols.iter().enumerate().map(|(i, &c)| (c, i)).collect();
     let mut row_of: BTreeMap<usize, usize> = BTreeMap::new();
     let mut entries: Vec<(usize, usize, f64)> = Vec::new();
-    for cp in couplings.iter().filter(|cp| cp.packets.iter().any(|k| group.contains(k))) {
+    for cp in couplings.iter().filter(|cp| cells.contains(&cp.cell)) {
         let np = cp.packets.len() * ndim;
         for (r, d) in rows_of(cp).into_iter().enumerate() {
             let row = &cp.c[r * np..(r + 1) * np];
@@ -1136,7 +1199,7 @@ pub fn null_multipliers(
                 let ri = *row_of.entry(i).or_insert(nr);
                 for (kl, &k) in cp.packets.iter().enumerate() {
                     for q in 0..ndim {
-                        if let Some(&ci) = col_of.get(&(k, q)) {
+                        if let Some(&ci) = col_of.get(&(cp.crack, k, q)) {
                             let v = row[kl * ndim + q];
                             if v != 0.0 {
                                 entries.push((ri, ci, c * v));
@@ -1167,18 +1230,77 @@ pub fn null_multipliers(
     for (c, s) in scale.iter().enumerate() {
         a.column_mut(c).scale_mut(*s);
     }
-    let svd = a.svd(false, true);
-    let Some(vt) = svd.v_t else { return Vec::new() };
+    let svd = a.svd(true, true);
+    let (Some(u), Some(vt)) = (svd.u, svd.v_t) else { return Vec::new() };
+    // The stiffness the bulk opposes to the free jump a candidate direction tests (its left singular
+    // vector ĝ, on the block's rows): ĝᵀKĝ / ĝᵀĝ over the mean diagonal stiffness of the rows, summed
+    // over the bulk elements (ĝ read on an element's unknowns through the elimination of the conditions).
+    let local = |dofs: &[usize], col: usize| -> Vec<f64> {
+        dofs.iter()
+            .map(|&d| map.expr(d).0.iter().map(|&(i, c)| row_of.get(&i).map_or(0.0, |&r| c * u[(r, col)])).sum())
+            .collect()
+    };
+    let mean_diagonal = std::cell::OnceCell::new();
+    let relative_stiffness = |col: usize| -> f64 {
+        let Some(bulk) = bulk else { return 1.0 };
+        let kref = *mean_diagonal.get_or_init(|| {
+            let mut diag = vec![0.0; row_of.len()];
+            for &(dofs, k) in bulk {
+                let nd = dofs.len();
+                for (a, &d) in dofs.iter().enumerate() {
+                    for &(i, c) in map.expr(d).0 {
+                        if let Some(&r) = row_of.get(&i) {
+                            diag[r] += c * c * k[a * nd + a];
+                        }
+                    }
+                }
+            }
+            let stiff: Vec<f64> = diag.into_iter().filter(|x| *x > 0.0).collect();
+            stiff.iter().sum::<f64>() / stiff.len().max(1) as f64
+        });
+        let norm: f64 = row_of.values().map(|&r| u[(r, col)] * u[(r, col)]).sum();
+        let mut q = 0.0;
+        for &(dofs, k) in bulk {
+            let g = local(dofs, col);
+            let nd = dofs.len();
+            for a in (0..nd).filter(|&a| g[a] != 0.0) {
+                q += g[a] * (0..nd).map(|b| k[a * nd + b] * g[b]).sum::<f64>();
+            }
+        }
+        if kref > 0.0 && norm > 0.0 {
+            q / norm / kref
+        } else {
+            1.0
+        }
+    };
     let mut out = Vec::new();
     for (i, &sv) in svd.singular_values.iter().enumerate() {
-        if sv > NULL_SINGULAR_VALUE {
+        if sv > NULL_SINGULAR_VALUE_MAX {
+            continue;
+        }
+        let (k, pivot) = if sv > STRUCTURAL_SINGULAR_VALUE {
+            let k = relative_stiffness(i);
+            (k, sv * sv / k)
+        } else {
+            (1.0, 0.0)
+        };
+        let lock = k < SLIVER_STIFFNESS && pivot < SLIVER_PIVOT;
+        if pivot > NULL_SCHUR && !lock {
             continue;
         }
         let v: Vec<f64> = (0..nc).map(|c| vt[(i, c)] * scale[c]).collect();
         let vmax = v.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let dir: Vec<(usize, usize, f64)> =
-            cols.iter().zip(&v).filter(|(_, x)| x.abs() > 1e-12 * vmax).map(|(&(k, q), x)| (k, q, x / vmax)).collect();
-        out.push(dir);
+        let mu: Vec<(usize, usize, usize, f64)> = cols
+            .iter()
+            .zip(&v)
+            .filter(|(_, x)| x.abs() > 1e-12 * vmax)
+            .map(|(&(g, k, q), x)| (g, k, q, x / vmax))
+            .collect();
+        let lock = lock.then(|| {
+            let gmax = row_of.values().fold(0.0f64, |m, &r| m.max(u[(r, i)].abs()));
+            row_of.iter().map(|(&d, &r)| (d, u[(r, i)] / gmax)).filter(|(_, x)| x.abs() > 1e-12).collect()
+        });
+        out.push(NullDirection { mu, lock });
     }
     out
 }

@@ -45,11 +45,18 @@ pub struct Elements {
     /// Per zone, the multiplier components (packet, q) removed because they test only prescribed jumps
     /// (`discrete::dead_components`): their λ, w and μ are held at zero.
     pub dead: Vec<BTreeSet<(usize, usize)>>,
-    /// Per zone, the combinations of multiplier components that test no free jump
-    /// (`discrete::null_multipliers`): the μ are kept orthogonal to them (relations Σ v μ = 0 on the
-    /// full unknowns).
-    pub null: Vec<Vec<Vec<(usize, f64)>>>,
+    /// The combinations of multiplier components that test no free jump, of one crack or across the
+    /// cracks of a junction (`discrete::null_multipliers`).
+    pub null: Vec<NullRelation>,
     pub time: Duration,
+}
+
+/// A multiplier direction removed (`discrete::NullDirection`), on the full unknowns: the μ are kept
+/// orthogonal to it (Σ v μ = 0), and the free jump of a near-sliver set it tested is held at zero
+/// (Σ g u = 0).
+pub struct NullRelation {
+    pub mu: Vec<(usize, f64)>,
+    pub lock: Option<Vec<(usize, f64)>>,
 }
 
 /// `fixed`: the unknowns the kinematic conditions prescribe, and `map` their elimination with the
@@ -69,10 +76,11 @@ pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> R
             .map_err(|e| Error::runtime(format!("cell {}: {e}", mesh.cell_names[c])).at(a.span))?;
         lins.push(Lin { dofs: xd.cell_dofs(nodes), k });
     }
+    let nbulk = lins.len();
     let mut laws: Vec<Law> = Vec::new();
     let mut lumped: Vec<Vec<f64>> = Vec::new();
     let mut dead_all: Vec<BTreeSet<(usize, usize)>> = Vec::new();
-    let mut null_all: Vec<Vec<Vec<(usize, f64)>>> = Vec::new();
+    let mut all_cps: Vec<discrete::Coupling> = Vec::new();
     // A node's jump in direction d is prescribed when every Heaviside unknown of the node in d is.
     let fixed_jump = |n: usize, d: usize| xd.sets[n].iter().all(|&b| fixed.contains(&(b + d)));
     for (zi, z) in s.zones.iter().enumerate() {
@@ -127,16 +135,27 @@ pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> R
             }
             laws.push(Law { zone: zi, m: mk, base: xd.packets[z.crack][k] });
         }
-        let null = discrete::null_multipliers(&cps, xd, mesh, ndim, &dead, map)
-            .into_iter()
-            .map(|v| v.into_iter().map(|(k, q, c)| (xd.packets[z.crack][k] + 2 * ndim + q, c)).collect())
-            .collect();
+        all_cps.extend(cps);
         lumped.push(m);
         dead_all.push(dead);
-        null_all.push(null);
     }
+    let none = BTreeSet::new();
+    let dead_of: Vec<&BTreeSet<(usize, usize)>> = (0..xm.cracks.len())
+        .map(|g| s.zones.iter().position(|z| z.crack == g).map_or(&none, |zi| &dead_all[zi]))
+        .collect();
+    // The bulk's stiffness weighs the near-null directions (with coupled flow it is the HM element's,
+    // not assembled here: the directions are weighed as of mean stiffness).
+    let bulk: Vec<(&[usize], &[f64])> = lins[..nbulk].iter().map(|l| (&l.dofs[..], &l.k[..])).collect();
+    let bulk = (s.flow.is_none()).then_some(&bulk[..]);
+    let null = discrete::null_multipliers(&all_cps, xd, mesh, ndim, &dead_of, map, bulk)
+        .into_iter()
+        .map(|v| NullRelation {
+            mu: v.mu.into_iter().map(|(g, k, q, c)| (xd.packets[g][k] + 2 * ndim + q, c)).collect(),
+            lock: v.lock.map(|l| l.into_iter().map(|(i, c)| (map.free_to_full[i], c)).collect()),
+        })
+        .collect();
 
-    Ok(Elements { lins, laws, lumped, dead: dead_all, null: null_all, time: t0.elapsed() })
+    Ok(Elements { lins, laws, lumped, dead: dead_all, null, time: t0.elapsed() })
 }
 
 /// The mortar coupling of one cell with the packets it touches: the unknowns (the cell's, then w and μ

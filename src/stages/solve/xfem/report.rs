@@ -10,6 +10,7 @@ use crate::concepts::ConceptRef;
 use crate::fem::elasticity::Modelisation;
 use crate::mesh::Mesh;
 use crate::xfem::czm::CzmState;
+use std::collections::BTreeSet;
 use std::fmt::Write as _;
 use std::time::Instant;
 
@@ -70,12 +71,23 @@ pub fn run_log(
             z.order,
             el.lumped[zi].iter().sum::<f64>()
         );
-        let (dead, null) = (el.dead[zi].len(), el.null[zi].len());
+        // The combinations with a component on this zone's multipliers (one of a junction counts on each).
+        let nd = su.ndim();
+        let mu: BTreeSet<usize> = su.xd.packets[z.crack].iter().flat_map(|&b| b + 2 * nd..b + 3 * nd).collect();
+        let dead = el.dead[zi].len();
+        let null: Vec<_> = el.null.iter().filter(|v| v.mu.iter().any(|(d, _)| mu.contains(d))).collect();
+        let locks = null.iter().filter(|v| v.lock.is_some()).count();
+        let null = null.len();
         if dead + null > 0 {
             let _ = writeln!(
                 s,
-                "                multipliers testing only prescribed jumps: {dead} component(s) removed, \
-                 {null} combination(s) of components kept at zero"
+                "                multipliers testing no free jump: {dead} component(s) removed, {null} combination(s) \
+                 of components kept at zero{}",
+                if locks > 0 {
+                    format!(" ({locks} with the near-sliver jump they test held at zero)")
+                } else {
+                    String::new()
+                }
             );
         }
     }

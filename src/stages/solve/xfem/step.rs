@@ -94,12 +94,16 @@ pub fn run(
         }
         // Multiplier directions that test no free jump: μ is kept orthogonal to them, unless the loads
         // prescribe λ on every component of the direction (DDL_IMPO on LAGS_*): the w-rows then fix μ.
+        // The free jump of a near-sliver set such a direction tested is held at zero.
         let fixed: std::collections::BTreeSet<usize> = cons.imposed.iter().map(|&(d, _)| d).collect();
-        for v in el.null.iter().flatten() {
-            if v.iter().all(|&(d, _)| fixed.contains(&(d - 2 * ndim))) {
+        for v in &el.null {
+            if let Some(g) = &v.lock {
+                cons.relation(g.clone(), 0.0);
+            }
+            if v.mu.iter().all(|&(d, _)| fixed.contains(&(d - 2 * ndim))) {
                 continue;
             }
-            cons.relation(v.clone(), 0.0);
+            cons.relation(v.mu.clone(), 0.0);
         }
         if n == 1 {
             run.hm_report = hydr;
