@@ -1080,4 +1080,48 @@ mod tests {
             assert!(ref_measure(t) > 0.0);
         }
     }
+
+    /// The Jacobi-scaled stiffness of a cell's shape functions restricted to a strip of width δ along an
+    /// edge (δ of the reference width): its eigenvalues, ascending. The functions that vanish on the edge
+    /// are (x − x₀)·∂ₓN(x₀, y) to first order; when there are more of them than that trace space has
+    /// dimensions, some combinations are O(δ²) in energy relative to the others — why an X-FEM strip
+    /// of quadratic cells costs 10²ᵏ in condition (docs/stability.md).
+    fn strip_spectrum(t: CellType, delta: f64) -> Vec<f64> {
+        let nn = t.nnodes();
+        let (g, w) = crate::fem::quadrature::gauss_legendre_1d(8);
+        let mut k = nalgebra::DMatrix::<f64>::zeros(nn, nn);
+        let (mut n, mut dn) = (vec![0.0; nn], vec![[0.0; 3]; nn]);
+        for (gx, wx) in g.iter().zip(&w) {
+            for (gy, wy) in g.iter().zip(&w) {
+                let xi = [-1.0 + delta * (gx + 1.0), *gy, 0.0];
+                shape_and_deriv(t, &xi, &mut n, &mut dn);
+                for a in 0..nn {
+                    for b in 0..nn {
+                        k[(a, b)] += wx * wy * delta * (dn[a][0] * dn[b][0] + dn[a][1] * dn[b][1]);
+                    }
+                }
+            }
+        }
+        let d: Vec<f64> = (0..nn).map(|a| 1.0 / k[(a, a)].sqrt()).collect();
+        let scaled = nalgebra::DMatrix::from_fn(nn, nn, |a, b| k[(a, b)] * d[a] * d[b]);
+        let mut ev: Vec<f64> = scaled.symmetric_eigen().eigenvalues.iter().copied().collect();
+        ev.sort_by(|a, b| a.total_cmp(b));
+        ev
+    }
+
+    #[test]
+    fn quad8_functions_on_a_strip_are_nearly_dependent_quad4_ones_are_not() {
+        for k in 1..=6 {
+            let delta = 10f64.powi(-k);
+            // The constant (Σ N = 1) is the null mode; QUAD8 has two more of size δ², QUAD4 none.
+            let q8 = strip_spectrum(CellType::Quad8, delta);
+            assert!(q8[0].abs() < 1e-14, "{q8:?}");
+            for e in &q8[1..3] {
+                assert!((0.03..0.3).contains(&(e / (delta * delta))), "QUAD8 δ = {delta}: {q8:?}");
+            }
+            assert!(q8[3] > 0.1, "QUAD8 δ = {delta}: {q8:?}");
+            let q4 = strip_spectrum(CellType::Quad4, delta);
+            assert!(q4[0].abs() < 1e-14 && q4[1] > 0.4, "QUAD4 δ = {delta}: {q4:?}");
+        }
+    }
 }
