@@ -106,8 +106,20 @@ KS = list(range(1, 15)) + [math.inf]
 ANGLES = list(range(1, 9))
 
 
+# Unequal strains (the "aniso" scene): u_i = s_i U (1 − X_i/L), so that the stress is not a pressure and the
+# traction on an inclined interface has a tangential part.
+STRAINS = {"X": 1.0, "Y": 2.0, "Z": 3.0}
+
+
 def scene(dim, length, phi, young=5.8e9, pena=100.0, variant="glued", phi2=None):
-    """The command file of one run. variant: glued | lips | uncut; phi2: FISS2 (a junction)."""
+    """The command file of one run. variant: glued | aniso (glued, unequal strains) | lips | uncut; phi2:
+    FISS2 (a junction)."""
+    if variant == "aniso":
+        text = scene(dim, length, phi, young, pena, "glued", phi2)
+        for x, f in STRAINS.items():
+            text = text.replace(f"(D{x} - U*(1.0 - COOR_{x}/", f"(D{x} - {f!r}*U*(1.0 - COOR_{x}/")
+            text = re.sub(rf"\bD{x}=U([,)])", rf"D{x}={f!r}*U\1", text)
+        return text
     if dim == 2:
         model, group, para = "D_PLAN", "SURFACE", '["X", "Y"]'
         sides = [("GAUCHE", "DROITE", "X"), ("BAS", "HAUT", "Y")]
@@ -276,7 +288,7 @@ def main():
             subprocess.run([ASTER, "mesh", "box", "--cell", cell, "--n", n, "--size", size, "-o", mesh],
                            check=True, capture_output=True)
             rows.append(run(work, cell, mesh, scene(dim, length, "", variant="uncut"), scene="uncut", row="", k=""))
-            for variant in ("glued", "lips"):
+            for variant in ("glued", "lips", "aniso"):
                 for row, base in ROWS[dim].items():
                     for k in KS:
                         phi = f"{base}-{delta(k)!r}"
@@ -308,7 +320,8 @@ def main():
     ks = [kname(k) for k in KS]
     lines = []
     for variant, title in (("glued", "worst node error / U, glued interface"),
-                           ("lips", "worst node error / U, free lips under the exact pressure")):
+                           ("lips", "worst node error / U, free lips under the exact pressure"),
+                           ("aniso", "worst node error / U, glued interface, unequal strains 1 : 2 : 3")):
         for dim in (2, 3):
             series = [(f"{c} {rw}", {"cell": c, "row": rw, "scene": variant}) for c in CELLS if CELLS[c][0] == dim
                       for rw in ROWS[dim]]
@@ -376,6 +389,8 @@ def main():
         ktitle, os.path.join(OUT, "condition.svg"), -2, 12, line=100.0)
     svg(curves("lips", "scaled"), klab, "free lips: condition estimate / the uncut mesh's",
         ktitle, os.path.join(OUT, "lips_condition.svg"), -1, 14, line=100.0)
+    svg(curves("aniso", "error"), klab, "glued, unequal strains (1 : 2 : 3): worst node error / U; × a NOOK",
+        ktitle, os.path.join(OUT, "aniso.svg"), -16, 1, line=1e-8)
     svg(curves("lips", "error"), klab, "free lips under the exact pressure: worst node error / U; × a NOOK",
         ktitle, os.path.join(OUT, "lips.svg"), -16, 1, line=1e-8)
     svg(curves("junction", "error", rowwise=False), klab, "junction 10^-k h from a node: worst node error / U",
