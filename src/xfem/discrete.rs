@@ -1240,27 +1240,36 @@ pub fn null_multipliers(
             .map(|&d| map.expr(d).0.iter().map(|&(i, c)| row_of.get(&i).map_or(0.0, |&r| c * u[(r, col)])).sum())
             .collect()
     };
-    let mean_diagonal = std::cell::OnceCell::new();
+    // Computed on the first candidate: the bulk elements with an unknown on the block's rows (the only
+    // ones a candidate's jump reaches) and the rows' mean diagonal stiffness.
+    let reach = std::cell::OnceCell::new();
     let relative_stiffness = |col: usize| -> f64 {
         let Some(bulk) = bulk else { return 1.0 };
-        let kref = *mean_diagonal.get_or_init(|| {
+        let (near, kref): &(Vec<usize>, f64) = reach.get_or_init(|| {
             let mut diag = vec![0.0; row_of.len()];
-            for &(dofs, k) in bulk {
+            let mut near = Vec::new();
+            for (e, &(dofs, k)) in bulk.iter().enumerate() {
                 let nd = dofs.len();
+                let mut touches = false;
                 for (a, &d) in dofs.iter().enumerate() {
                     for &(i, c) in map.expr(d).0 {
                         if let Some(&r) = row_of.get(&i) {
                             diag[r] += c * c * k[a * nd + a];
+                            touches = true;
                         }
                     }
                 }
+                if touches {
+                    near.push(e);
+                }
             }
             let stiff: Vec<f64> = diag.into_iter().filter(|x| *x > 0.0).collect();
-            stiff.iter().sum::<f64>() / stiff.len().max(1) as f64
+            (near, stiff.iter().sum::<f64>() / stiff.len().max(1) as f64)
         });
+        let kref = *kref;
         let norm: f64 = row_of.values().map(|&r| u[(r, col)] * u[(r, col)]).sum();
         let mut q = 0.0;
-        for &(dofs, k) in bulk {
+        for &(dofs, k) in near.iter().map(|&e| &bulk[e]) {
             let g = local(dofs, col);
             let nd = dofs.len();
             for a in (0..nd).filter(|&a| g[a] != 0.0) {
