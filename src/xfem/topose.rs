@@ -852,15 +852,9 @@ impl Ctx<'_> {
         let edges = self.edges();
         let a1 = inter[ip1 - 1].edge;
         let a2 = inter[ip2 - 1].edge;
-        let (mut a, mut b, mut d) = (0, 0, 0);
-        for i in 0..2 {
-            for j in 0..2 {
-                if edges[a1 - 1][i] == edges[a2 - 1][j] {
-                    a = edges[a1 - 1][1 - i];
-                    b = edges[a2 - 1][1 - j];
-                }
-            }
-        }
+        // The vertex the two edges share, and their other ends a and b.
+        let (shared, a, b) = vertex_and_ends(edges, a1, a2);
+        let mut d = 0;
         for e in edges {
             for j in 0..2 {
                 if e[j] == a && e[1 - j] == b {
@@ -878,11 +872,7 @@ impl Ctx<'_> {
         let q2 = inter[ip2 - 1].p.xi;
         let pm = mil.get(pm2 - 1).ok_or("TOPOSE: xmilfa: missing mid-point")?.xi;
         // On a curved face (an earlier crack's, bent by xajuls) the middles are taken on the face.
-        let shared = edges[a1 - 1][..2].iter().find(|v| edges[a2 - 1][..2].contains(v)).copied();
-        let face = match shared {
-            Some(c) if self.dim == 3 => CurvedFace::of(self, sub, [a, b, c])?,
-            _ => None,
-        };
+        let face = if self.dim == 3 { CurvedFace::of(self, sub, [a, b, shared])? } else { None };
         let middle = |p: &[f64; 3], q: &[f64; 3]| -> Result<[f64; 3], String> {
             match &face {
                 Some(f) => Ok(f.lift(&((f.flatten(&V3::from(*p))? + f.flatten(&V3::from(*q))?) / 2.0)).into()),

@@ -476,7 +476,7 @@ fn linear_cells_with_jumps_prescribed_where_the_interface_meets_the_boundary() {
     let h = L / N as f64;
     for (t, dim, phi) in [
         (CellType::Quad4, 2, format!("X-{}", 0.5 * L + 0.01 * h)),
-        (CellType::Hexa8, 3, format!("(Z-0.5*X)/1.118033988749895-{}", 1e-3 * h)),
+        (CellType::Hexa8, 3, format!("{}-{}", planes(3).row12, 1e-3 * h)),
     ] {
         let (path, _) = mesh(&dir, t);
         let comm = dir.join("lin.comm");
@@ -507,12 +507,7 @@ fn simplex_and_prism_cells_near_and_through_nodes() {
     {
         let dim = t.dim();
         let (path, _) = mesh(&dir, t);
-        let (diag, row) = if dim == 2 {
-            ("(X+Y)/1.4142135623730951", "(Y-0.5*X)/1.118033988749895")
-        } else {
-            ("(X+Y+Z)/1.7320508075688772", "(Z-0.5*X)/1.118033988749895")
-        };
-        let d0 = L / if dim == 2 { 2f64.sqrt() } else { 3f64.sqrt() };
+        let Planes { diag, through: d0, row12: row, .. } = planes(dim);
         for phi in [
             format!("{diag}-{d0}"),
             format!("{diag}-{}", d0 + 1e-5 * h),
@@ -524,6 +519,27 @@ fn simplex_and_prism_cells_near_and_through_nodes() {
         }
     }
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The planes the deterministic scenes cut along, as level sets of unit gradient: the diagonal
+/// X + Y (+ Z) = 0 (the row of vertices X + Y (+ Z) = L lies `through` from it), the 1:2 row Y = X/2
+/// (3D: Z = X/2, vertices and mid-side nodes alternately) and a plane inclined to every axis.
+struct Planes {
+    diag: String,
+    through: f64,
+    row12: String,
+    anywhere: &'static str,
+}
+
+fn planes(dim: usize) -> Planes {
+    let (sum, up, anywhere) =
+        if dim == 2 { ("X+Y", "Y", "X+0.37*Y-1.13") } else { ("X+Y+Z", "Z", "X+0.37*Y+0.61*Z-1.13") };
+    Planes {
+        diag: format!("({sum})/{:?}", (dim as f64).sqrt()),
+        through: L / (dim as f64).sqrt(),
+        row12: format!("({up}-0.5*X)/{:?}", 1.25f64.sqrt()),
+        anywhere,
+    }
 }
 
 /// [`scene`] with free lips (no contact) loaded by the pressure `p` (PRES_REP FISSURE).
@@ -557,12 +573,7 @@ fn pressurised_lips_are_exact_on_every_cell_type() {
     for t in FAMILIES {
         let dim = t.dim();
         let (path, _) = mesh(&dir, t);
-        let (diag, row, tilted) = if dim == 2 {
-            ("(X+Y)/1.4142135623730951", "(Y-0.5*X)/1.118033988749895", "X+0.37*Y-1.13")
-        } else {
-            ("(X+Y+Z)/1.7320508075688772", "(Z-0.5*X)/1.118033988749895", "X+0.37*Y+0.61*Z-1.13")
-        };
-        let d0 = L / if dim == 2 { 2f64.sqrt() } else { 3f64.sqrt() };
+        let Planes { diag, through: d0, row12: row, anywhere: tilted } = planes(dim);
         // σ = −p I: p = E/((1+ν)(1−2ν))·U/L in plane strain, E/(1−2ν)·U/L in 3D (E = 5.8e9, ν = 0.2).
         let p = if dim == 2 { 5.8e9 / (1.2 * 0.6) } else { 5.8e9 / 0.6 } * U / L;
         for phi in [
@@ -605,16 +616,12 @@ fn unequal_strains_are_exact_where_nothing_is_snapped() {
     for t in FAMILIES {
         let dim = t.dim();
         let (path, _) = mesh(&dir, t);
-        let (row12, diag, anywhere) = if dim == 2 {
-            ("(Y-0.5*X)/1.118033988749895", "(X+Y-2.0)/1.4142135623730951", "X+0.37*Y-1.13")
-        } else {
-            ("(Z-0.5*X)/1.118033988749895", "(X+Y+Z-2.0)/1.7320508075688772", "X+0.37*Y+0.61*Z-1.13")
-        };
+        let Planes { diag, through, row12, anywhere } = planes(dim);
         let mut cuts = vec![anywhere.to_string()];
         for k in [1, 3, 5] {
             let d = 10f64.powi(-k) * h;
             cuts.push(format!("{row12}-{d:e}"));
-            cuts.push(format!("{diag}-{d:e}"));
+            cuts.push(format!("{diag}-{}", through + d));
         }
         for phi in cuts {
             let text = unequal_strains(&scene(dim, &phi, 1e-8));
