@@ -21,7 +21,6 @@
 //! residual `‖b − A x‖ / ‖b‖` after the solve.
 
 pub mod ordering;
-pub mod scaling;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
