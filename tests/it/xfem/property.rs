@@ -276,6 +276,19 @@ fn assert_exact(dir: &Path, path: &Path, text: &str, dim: usize, what: &str) {
     assert_eq!((o.ok_count(), o.nook_count()), (2 * 2 * 2 * dim, 0), "{what}");
 }
 
+/// Every scene `scenes(t)` gives — (what, command file) — on the box of each cell type of `types`, run in
+/// a scratch folder named `tag`, matches the analytic field ([`assert_exact`]).
+fn assert_exact_on(tag: &str, types: &[CellType], scenes: impl Fn(CellType) -> Vec<(String, String)>) {
+    let dir = scratch!(tag);
+    for &t in types {
+        let (path, _) = mesh(&dir, t);
+        for (what, text) in scenes(t) {
+            assert_exact(&dir, &path, &text, t.dim(), &format!("{} {what}", t.name()));
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
 fn mesh(dir: &Path, t: CellType) -> (PathBuf, Vec<[f64; 3]>) {
     let dim = t.dim();
     let m = aster::mesh::generate::box_mesh(t, &vec![N; dim], &vec![L; dim]).unwrap();
@@ -500,25 +513,23 @@ fn linear_cells_with_jumps_prescribed_where_the_interface_meets_the_boundary() {
 /// visual mesh matches the analytic field to 1e-8·U.
 #[test]
 fn simplex_and_prism_cells_near_and_through_nodes() {
-    let dir = scratch!("simplex");
     let h = L / N as f64;
-    for t in
-        [CellType::Tria3, CellType::Tria6, CellType::Tetra4, CellType::Tetra10, CellType::Penta6, CellType::Penta15]
-    {
+    let types =
+        [CellType::Tria3, CellType::Tria6, CellType::Tetra4, CellType::Tetra10, CellType::Penta6, CellType::Penta15];
+    assert_exact_on("simplex", &types, |t| {
         let dim = t.dim();
-        let (path, _) = mesh(&dir, t);
         let Planes { diag, through: d0, row12: row, .. } = planes(dim);
-        for phi in [
+        [
             format!("{diag}-{d0}"),
             format!("{diag}-{}", d0 + 1e-5 * h),
             format!("{diag}-{}", d0 + 1e-6 * h),
             format!("{diag}-{}", d0 + 1e-7 * h),
             format!("{row}-{}", 1e-3 * h),
-        ] {
-            assert_exact(&dir, &path, &scene(dim, &phi, 1e-8), dim, &format!("{} {phi}", t.name()));
-        }
-    }
-    let _ = std::fs::remove_dir_all(&dir);
+        ]
+        .into_iter()
+        .map(|phi| (phi.clone(), scene(dim, &phi, 1e-8)))
+        .collect()
+    });
 }
 
 /// The planes the deterministic scenes cut along, as level sets of unit gradient: the diagonal
@@ -568,25 +579,23 @@ fn lips_scene(dim: usize, phi: &str, p: f64) -> String {
 /// every plane inclined to two axes.
 #[test]
 fn pressurised_lips_are_exact_on_every_cell_type() {
-    let dir = scratch!("lips");
     let h = L / N as f64;
-    for t in FAMILIES {
+    assert_exact_on("lips", &FAMILIES, |t| {
         let dim = t.dim();
-        let (path, _) = mesh(&dir, t);
         let Planes { diag, through: d0, row12: row, anywhere: tilted } = planes(dim);
         // σ = −p I: p = E/((1+ν)(1−2ν))·U/L in plane strain, E/(1−2ν)·U/L in 3D (E = 5.8e9, ν = 0.2).
         let p = if dim == 2 { 5.8e9 / (1.2 * 0.6) } else { 5.8e9 / 0.6 } * U / L;
-        for phi in [
+        [
             format!("{diag}-{d0}"),
             format!("{diag}-{}", d0 + 1e-6 * h),
             format!("{diag}-{}", d0 + 1e-7 * h),
             format!("{row}-{}", 1e-3 * h),
             tilted.to_string(),
-        ] {
-            assert_exact(&dir, &path, &lips_scene(dim, &phi, p), dim, &format!("{} {phi}", t.name()));
-        }
-    }
-    let _ = std::fs::remove_dir_all(&dir);
+        ]
+        .into_iter()
+        .map(|phi| (phi.clone(), lips_scene(dim, &phi, p)))
+        .collect()
+    });
 }
 
 /// The glued scene under unequal strains, u_i = s_i U (1 − X_i/L) with s = 1 : 2 : 3 along X, Y, Z: the
@@ -611,11 +620,9 @@ fn unequal_strains(text: &str) -> String {
 /// docs/stability.md "Unequal strains"), which is left out here.
 #[test]
 fn unequal_strains_are_exact_where_nothing_is_snapped() {
-    let dir = scratch!("unequal");
     let h = L / N as f64;
-    for t in FAMILIES {
+    assert_exact_on("unequal", &FAMILIES, |t| {
         let dim = t.dim();
-        let (path, _) = mesh(&dir, t);
         let Planes { diag, through, row12, anywhere } = planes(dim);
         let mut cuts = vec![anywhere.to_string()];
         for k in [1, 3, 5] {
@@ -623,13 +630,14 @@ fn unequal_strains_are_exact_where_nothing_is_snapped() {
             cuts.push(format!("{row12}-{d:e}"));
             cuts.push(format!("{diag}-{}", through + d));
         }
-        for phi in cuts {
-            let text = unequal_strains(&scene(dim, &phi, 1e-8));
-            assert!(text.contains("2.0*U") && text.contains("(DY - 2.0*U*"), "{text}");
-            assert_exact(&dir, &path, &text, dim, &format!("{} {phi}", t.name()));
-        }
-    }
-    let _ = std::fs::remove_dir_all(&dir);
+        cuts.into_iter()
+            .map(|phi| {
+                let text = unequal_strains(&scene(dim, &phi, 1e-8));
+                assert!(text.contains("2.0*U") && text.contains("(DY - 2.0*U*"), "{text}");
+                (phi, text)
+            })
+            .collect()
+    });
 }
 
 /// Two glued interfaces meeting 10⁻ᵏ·h from a node (a junction, FISS2 branching off FISS1 on its + side;
@@ -647,17 +655,13 @@ fn unequal_strains_are_exact_where_nothing_is_snapped() {
 /// at k = 7.
 #[test]
 fn a_junction_near_a_node_is_exact() {
-    let dir = scratch!("junction_node");
     let h = L / N as f64;
-    for t in FAMILIES {
-        let dim = t.dim();
-        let (path, _) = mesh(&dir, t);
-        for k in [1, 2, 3, 4, 6, 7, 0] {
-            let two = junction_scene(dim, if k == 0 { 0.0 } else { 10f64.powi(-k) * h }, true);
-            assert_exact(&dir, &path, &two, dim, &format!("{} k = {k}", t.name()));
-        }
-    }
-    let _ = std::fs::remove_dir_all(&dir);
+    assert_exact_on("junction_node", &FAMILIES, |t| {
+        [1, 2, 3, 4, 6, 7, 0]
+            .into_iter()
+            .map(|k| (format!("k = {k}"), junction_scene(t.dim(), if k == 0 { 0.0 } else { 10f64.powi(-k) * h }, true)))
+            .collect()
+    });
 }
 
 /// The glued scene with FISS2 branching off FISS1 on its + side, both through the node (1, 1) (in 3D
