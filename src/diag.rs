@@ -4,7 +4,7 @@
 //! diagnostic), a message, and where known the span in the command file and
 //! the command it arose in. The runner turns spans into `file:line:col`.
 
-use crate::syntax::ast::Span;
+pub use crate::syntax::ast::Span;
 use std::cell::Cell;
 use std::fmt;
 use std::time::{Duration, Instant};
@@ -35,13 +35,16 @@ pub struct Error {
     pub msg: String,
     pub span: Option<Span>,
     pub command: Option<String>,
+    /// The keyword of the command the error belongs to, named by a library that knows no span (a physics
+    /// names EXCIT or CHAM_MATER); the stage that knows the keywords' spans locates it (`"KW: msg"`).
+    pub keyword: Option<&'static str>,
 }
 
 pub type Result<T> = std::result::Result<T, Error>;
 
 impl Error {
     pub fn new(kind: ErrorKind, msg: impl Into<String>) -> Self {
-        Error { kind, msg: msg.into(), span: None, command: None }
+        Error { kind, msg: msg.into(), span: None, command: None, keyword: None }
     }
     pub fn python(msg: impl Into<String>) -> Self {
         Self::new(ErrorKind::Python, msg)
@@ -66,6 +69,13 @@ impl Error {
     pub fn at(mut self, span: Span) -> Self {
         if self.span.is_none() {
             self.span = Some(span);
+        }
+        self
+    }
+    /// Name the keyword the error belongs to, for the stage to locate (unless one is named already).
+    pub fn at_keyword(mut self, kw: &'static str) -> Self {
+        if self.keyword.is_none() && self.span.is_none() {
+            self.keyword = Some(kw);
         }
         self
     }

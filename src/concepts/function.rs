@@ -283,6 +283,32 @@ impl Nappe {
     }
 }
 
+/// How a FORMULE is evaluated: by the interpreter that parsed it. Concepts know its parameters and its
+/// text, never its expression.
+pub trait Evaluate: std::fmt::Debug {
+    /// The value with the parameters bound to `values` (in NOM_PARA order).
+    fn eval(&self, values: &[f64]) -> Result<f64>;
+}
+
+/// FORMULE: its parameters (NOM_PARA), its text (VALE) and its evaluation.
+#[derive(Debug, Clone)]
+pub struct Formula {
+    pub nom_para: Vec<String>,
+    pub text: String,
+    body: std::rc::Rc<dyn Evaluate>,
+}
+
+impl Formula {
+    pub fn new(nom_para: Vec<String>, text: String, body: std::rc::Rc<dyn Evaluate>) -> Formula {
+        Formula { nom_para, text, body }
+    }
+
+    /// Evaluate with the parameters bound to `values` (in NOM_PARA order).
+    pub fn eval(&self, values: &[f64]) -> Result<f64> {
+        self.body.eval(values)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -17,7 +17,7 @@ use std::cell::{Ref, RefCell, RefMut};
 use std::fmt;
 use std::rc::Rc;
 
-pub use function::{Function, Interp as Interpolation, Nappe, Prol};
+pub use function::{Formula, Function, Interp as Interpolation, Nappe, Prol};
 pub use table::{Cell, Table};
 
 /// The concept types, named as in Code_Aster's catalogue.
@@ -106,7 +106,7 @@ pub enum ConceptData {
     Pending,
     Function(Function),
     Nappe(Nappe),
-    Formula(crate::interp::Formula),
+    Formula(function::Formula),
     Table(Table),
     ListReal(Vec<f64>),
     ListInt(Vec<i64>),

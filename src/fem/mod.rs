@@ -5,8 +5,12 @@
 
 pub mod assembly;
 pub mod dofs;
+pub mod elastic;
 pub mod elasticity;
+pub mod field;
 pub mod geometry;
+pub mod physics;
+pub mod postpro;
 pub mod quadrature;
 pub mod reference;
 

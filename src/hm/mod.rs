@@ -10,11 +10,15 @@
 //!   element's internal forces and tangent, displacement quadratic on all nodes and pressure linear on
 //!   the vertices.
 //!
+//! - [`physics`]: the problem of a model (its cells' elements, materials and numbering) as a
+//!   [`crate::fem::physics::Physics`]: its loads, its element loop and its fields.
+//!
 //! The library knows cells, shape functions and numbers: nothing of commands, concepts or files.
 
 pub mod element;
 pub mod law;
 pub mod material;
+pub mod physics;
 
 pub use element::{CellPoints, Kinematics, Variant};
 pub use law::PointState;

@@ -63,7 +63,18 @@ pub struct Formula {
     fast: Option<fast::Fast>,
 }
 
+impl crate::concepts::function::Evaluate for Formula {
+    fn eval(&self, values: &[f64]) -> Result<f64> {
+        Formula::eval(self, values)
+    }
+}
+
 impl Formula {
+    /// The FORMULE concept's data: its parameters, its text and this expression as its evaluation.
+    pub fn into_concept(self) -> crate::concepts::Formula {
+        crate::concepts::Formula::new(self.nom_para.clone(), self.text.clone(), Rc::new(self))
+    }
+
     /// Parse `text`; `span` locates the VALE keyword for errors.
     pub fn new(text: &str, nom_para: Vec<String>, context: Vec<(String, Value)>, globals: Scope) -> Result<Formula> {
         let expr = crate::syntax::parse_expr(text.trim(), 0)

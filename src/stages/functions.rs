@@ -4,6 +4,7 @@
 use crate::catalog::args::{Args, Val};
 use crate::concepts::function::{Function, Interp, Nappe, Prol};
 use crate::concepts::table::Table;
+use crate::concepts::Formula as FormulaConcept;
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
 use crate::interp::{Formula, Value};
@@ -80,7 +81,7 @@ fn union(sets: &[&[f64]]) -> Vec<f64> {
 /// Anything that can be evaluated at one abscissa.
 enum F1<'a> {
     Tab(&'a Function),
-    Formula(&'a Formula),
+    Formula(&'a FormulaConcept),
 }
 
 impl F1<'_> {
@@ -258,7 +259,7 @@ pub fn formule(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     }
     let f =
         Formula::new(text, a.texts("NOM_PARA"), context, ctx.globals.clone()).map_err(|e| e.at(a.span_of("VALE")))?;
-    Ok(Some(ConceptData::Formula(f)))
+    Ok(Some(ConceptData::Formula(f.into_concept())))
 }
 
 // ------------------------------------------------------------------ CALC_FONCTION

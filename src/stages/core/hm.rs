@@ -9,6 +9,7 @@ use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
 use crate::fem::dofs::DofNumbering;
 use crate::hm::element::Column;
+pub use crate::hm::physics::{HmCell, HmProblem, HEAVISIDE};
 use crate::hm::{Biot, CellPoints, Kinematics, Variant};
 use crate::mesh::Mesh;
 use crate::xfem::model::XfemModel;
@@ -31,57 +32,6 @@ pub fn hm_kind(m: Modelling) -> Option<(Kinematics, Variant)> {
         ThreeDHmSi => (Kinematics::ThreeD, Variant::Reduced),
         _ => return None,
     })
-}
-
-/// One bulk cell of an HM model.
-pub struct HmCell {
-    pub points: CellPoints,
-    pub mat: Biot,
-    /// THM_DIFFU PESA_MULT: the multiplier of the fluid's gravity, a function of INST.
-    pub pesa_mult: Option<ConceptRef>,
-    /// The global numbers of the cell's local unknowns.
-    pub dofs: Vec<usize>,
-}
-
-/// The saturated HM problem of a model.
-pub struct HmProblem {
-    pub mesh: Rc<Mesh>,
-    pub modelling: Modelling,
-    pub kin: Kinematics,
-    pub variant: Variant,
-    /// The bulk cells, and the skin cells of the model (where FLUX_THM_REP and PRES_REP act).
-    pub bulk: Vec<usize>,
-    pub skin: Vec<usize>,
-    /// Per mesh cell: its HM element, for bulk cells.
-    pub cells: Vec<Option<HmCell>>,
-    pub numbering: DofNumbering,
-    /// The index of PRE1 among the numbering's components.
-    pub pre1: usize,
-    /// MODI_MODELE_XFEM: the enrichment of an X-FEM model (Heaviside-enriched displacement and pressure,
-    /// components `H<j>X … H<j>PRE1` after the standard ones).
-    pub xfem: Option<Rc<XfemModel>>,
-}
-
-/// The components of the Heaviside enrichment sets, per set: `H<j>X H<j>Y [H<j>Z] H<j>PRE1`.
-const HEAVISIDE: [[&str; 4]; 4] = [
-    ["H1X", "H1Y", "H1Z", "H1PRE1"],
-    ["H2X", "H2Y", "H2Z", "H2PRE1"],
-    ["H3X", "H3Y", "H3Z", "H3PRE1"],
-    ["H4X", "H4Y", "H4Z", "H4PRE1"],
-];
-
-impl HmProblem {
-    /// True when component `k` of the numbering is a pressure (PRE1 or a Heaviside part of it).
-    pub fn is_pressure(&self, k: usize) -> bool {
-        self.numbering.components[k].ends_with("PRE1")
-    }
-}
-
-impl HmProblem {
-    /// The bulk cells with their elements.
-    pub fn elements(&self) -> impl Iterator<Item = (usize, &HmCell)> {
-        self.bulk.iter().map(move |&c| (c, self.cells[c].as_ref().expect("bulk cells have an element")))
-    }
 }
 
 /// What a parameter of the material is called in messages, and its value.
@@ -253,6 +203,10 @@ pub fn hm_problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<HmProblem> {
     let numbering = DofNumbering::with_components(names, mask);
     let mut cells: Vec<Option<HmCell>> = (0..mesh.cells.len()).map(|_| None).collect();
     let mut cache: Vec<(*const crate::concepts::Concept, (Biot, Option<ConceptRef>))> = Vec::new();
+    // PESA_MULT, a function of INST.
+    let multiplier = |f: ConceptRef| -> crate::hm::physics::Multiplier {
+        Rc::new(move |t: f64| super::eval::eval_at(&f, &[0.0; 3], t))
+    };
     for &c in &bulk {
         let name = &mesh.cell_names[c];
         let Some(mc) = &mats[c] else {
@@ -282,9 +236,22 @@ pub fn hm_problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<HmProblem> {
                 points.ndof
             )));
         }
-        cells[c] = Some(HmCell { points, mat, pesa_mult, dofs });
+        cells[c] = Some(HmCell { points, mat, pesa_mult: pesa_mult.map(multiplier), dofs });
     }
-    Ok(HmProblem { mesh, modelling, kin, variant, bulk, skin, cells, numbering, pre1, xfem: xm })
+    Ok(HmProblem {
+        mesh,
+        modelling: modelling.to_string(),
+        kin,
+        variant,
+        bulk,
+        skin,
+        cells,
+        numbering,
+        pre1,
+        xfem: xm,
+        theta: 1.0,
+        pressure_row_scale: 0.0,
+    })
 }
 
 /// The element of an X-FEM cell: its sub-cells' points (`XINT`), the functions of its nodes and their

@@ -1,13 +1,15 @@
-//! The core every solving stage shares (MECA_STATIQUE, STAT_NON_LINE, the X-FEM driver and the coupled
-//! drivers to come): function evaluation at a point and time (`eval`), the checked problem of a model and a
-//! material field (`problem`), the loads and conditions of EXCIT and the reduced assembled system
-//! (`assembly`), SOLVEUR and the solve (`solver`), and the Newton / time-step loop with Code_Aster's
-//! convergence keywords (`newton`). It knows no command: it reads `Args` of the solving commands only
-//! through the keywords they share (EXCIT, SOLVEUR, CONVERGENCE, INCREMENT).
+//! The core every solving command shares, whatever its physics: the shared keywords read once into typed
+//! settings, the physics chosen there (`settings`); the loads of EXCIT handed to the physics as typed items
+//! (`loads`); the time stepping, prediction and Newton corrections over any `fem::physics::Physics`
+//! (`driver`); Code_Aster's convergence keywords, instants and archiving (`newton`); SOLVEUR and the
+//! solver's log (`solver`); function evaluation at a point and time (`eval`); and the builders of the
+//! physics from concepts: the elastic problem (`problem`) and the saturated HM one (`hm`).
 
-pub mod assembly;
+pub mod driver;
 pub mod eval;
 pub mod hm;
+pub mod loads;
 pub mod newton;
 pub mod problem;
+pub mod settings;
 pub mod solver;

@@ -5,6 +5,7 @@
 use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
 use crate::diag::Result;
+use crate::diag::Span;
 
 /// The computation instants: the list, cut to INST_INIT / INST_FIN (or their
 /// NUME_INST_* forms). The first one is the initial state.
@@ -100,35 +101,6 @@ pub fn subdivision(a: &Args) -> Option<crate::concepts::Subdivision> {
     }
 }
 
-/// STAT_NON_LINE keywords no driver implements yet, and METHODE other than NEWTON.
-pub fn refuse_unsupported_options(a: &Args) -> Result<()> {
-    refuse_unsupported_options_except(a, &[])
-}
-
-/// The same, less the keywords a driver handles itself (ETAT_INIT, ARCHIVAGE).
-pub fn refuse_unsupported_options_except(a: &Args, handled: &[&str]) -> Result<()> {
-    let refused: Vec<&str> = [
-        "SOUS_STRUC",
-        "ETAT_INIT",
-        "RECH_LINEAIRE",
-        "PILOTAGE",
-        "OBSERVATION",
-        "SUIVI_DDL",
-        "CRIT_QUALITE",
-        "ENERGIE",
-        "CRIT_STAB",
-        "RESULTAT",
-    ]
-    .into_iter()
-    .filter(|k| !handled.contains(k))
-    .collect();
-    a.refuse(&refused)?;
-    if a.text("METHODE").is_some_and(|m| m != "NEWTON") {
-        return Err(a.err("METHODE", "only METHODE='NEWTON' is supported yet"));
-    }
-    Ok(())
-}
-
 /// NEWTON's options (PREDICTION, MATRICE, REAC_ITER, REAC_INCR, ...): our drivers assemble the
 /// consistent tangent at every iteration, which converges to the same state as any of Code_Aster's
 /// choices. A line for the run log when the file asks for something else than the default.
@@ -152,19 +124,6 @@ fn show(v: &crate::catalog::args::ArgValue) -> String {
     }
 }
 
-/// COMPORTEMENT's controls of the local integration (ITER_INTE_MAXI, ITER_INTE_PAS, RESI_INTE_RELA,
-/// RESI_INTE, ALGO_INTE): the laws we compute (ELAS, CZM_LIN_MIX) integrate in closed form, so they have
-/// no effect. COMPORTEMENT on part of the model (GROUP_MA, MAILLE) is refused.
-pub fn closed_form_behaviour(occ: &Args) -> Result<()> {
-    occ.refuse(&["GROUP_MA", "MAILLE"])?;
-    for k in ["ITER_INTE_MAXI", "ITER_INTE_PAS", "RESI_INTE_RELA", "RESI_INTE", "ALGO_INTE"] {
-        if occ.declares(k) {
-            occ.has(k);
-        }
-    }
-    Ok(())
-}
-
 /// The largest absolute value of a vector (0 for an empty one).
 pub fn inf_norm(v: &[f64]) -> f64 {
     v.iter().fold(0.0, |m, x| m.max(x.abs()))
@@ -179,18 +138,21 @@ pub struct Convergence {
     pub resi_rela: Option<f64>,
     pub resi_maxi: Option<f64>,
     pub iter_max: usize,
+    /// Where CONVERGENCE was given (the command when it was not): a step that does not converge is
+    /// reported there.
+    pub span: Span,
 }
 
 impl Default for Convergence {
     fn default() -> Self {
-        Convergence { resi_rela: Some(1e-6), resi_maxi: None, iter_max: 10 }
+        Convergence { resi_rela: Some(1e-6), resi_maxi: None, iter_max: 10, span: Span::default() }
     }
 }
 
 impl Convergence {
     pub fn from_args(a: &Args) -> Result<Convergence> {
         let Some(c) = a.declares("CONVERGENCE").then(|| a.fact("CONVERGENCE")).flatten() else {
-            return Ok(Convergence::default());
+            return Ok(Convergence { span: a.span, ..Convergence::default() });
         };
         for kw in ["RESI_REFE_RELA", "RESI_COMP_RELA"] {
             if c.given(kw) {
@@ -208,7 +170,18 @@ impl Convergence {
             resi_rela: if resi_rela.is_none() && resi_maxi.is_none() { Some(1e-6) } else { resi_rela },
             resi_maxi,
             iter_max: c.int("ITER_GLOB_MAXI").unwrap_or(10).max(1) as usize,
+            span: a.span_of("CONVERGENCE"),
         })
+    }
+
+    /// The error of a step that did not converge in ITER_GLOB_MAXI corrections, located at CONVERGENCE.
+    pub fn not_converged(&self, t: f64, rel: f64, abs: f64) -> crate::diag::Error {
+        crate::diag::Error::runtime(format!(
+            "CONVERGENCE: Newton did not converge at INST={t} in {} iterations (relative residual {rel:.3e}, \
+             absolute {abs:.3e})",
+            self.iter_max
+        ))
+        .at(self.span)
     }
 
     /// After `iters` corrections, do the residual norms meet every given criterion?
@@ -240,7 +213,7 @@ pub struct Converged {
 /// `linear` (MECA_STATIQUE: one solve, no convergence test). A solve that does not converge in
 /// ITER_GLOB_MAXI corrections stops with a message located at CONVERGENCE; one past the run's time
 /// limit stops before its next correction.
-pub fn newton(a: &Args, conv: &Convergence, linear: bool, t: f64, step: &mut impl NewtonStep) -> Result<Converged> {
+pub fn newton(conv: &Convergence, linear: bool, t: f64, step: &mut impl NewtonStep) -> Result<Converged> {
     let mut iters = 0;
     loop {
         let (rel, abs) = step.residual()?;
@@ -249,14 +222,7 @@ pub fn newton(a: &Args, conv: &Convergence, linear: bool, t: f64, step: &mut imp
             return Ok(Converged { iters, rel, abs });
         }
         if iters == conv.iter_max {
-            let iter_max = conv.iter_max;
-            return Err(a.err(
-                "CONVERGENCE",
-                format!(
-                    "Newton did not converge at INST={t} in {iter_max} iterations (relative residual {rel:.3e}, \
-                     absolute {abs:.3e})"
-                ),
-            ));
+            return Err(conv.not_converged(t, rel, abs));
         }
         crate::diag::check_deadline().map_err(|mut e| {
             e.msg = format!("{} during Newton iteration {} at INST={t}", e.msg, iters + 1);
@@ -370,14 +336,10 @@ mod tests {
         }
     }
 
-    fn args() -> Args {
-        Args::default()
-    }
-
     #[test]
     fn newton_converges_quadratically_and_counts_corrections() {
         let mut s = Sqrt2 { x: 1.0 };
-        let c = newton(&args(), &Convergence::default(), false, 1.0, &mut s).unwrap();
+        let c = newton(&Convergence::default(), false, 1.0, &mut s).unwrap();
         assert!((s.x - 2f64.sqrt()).abs() < 1e-11);
         assert_eq!(c.iters, 4);
         assert!(c.rel <= 1e-6);
@@ -387,7 +349,7 @@ mod tests {
     fn newton_stops_at_iter_glob_maxi() {
         let mut s = Sqrt2 { x: 1.0 };
         let conv = Convergence { iter_max: 2, ..Convergence::default() };
-        let e = newton(&args(), &conv, false, 3.0, &mut s).unwrap_err();
+        let e = newton(&conv, false, 3.0, &mut s).unwrap_err();
         assert!(e.msg.contains("did not converge at INST=3 in 2 iterations"), "{}", e.msg);
     }
 
@@ -395,9 +357,8 @@ mod tests {
     fn newton_stops_at_the_runs_deadline() {
         let mut s = Sqrt2 { x: 1.0 };
         let deadline = crate::diag::Deadline::after(std::time::Duration::ZERO);
-        let e =
-            crate::diag::with_deadline(Some(deadline), || newton(&args(), &Convergence::default(), false, 2.0, &mut s))
-                .unwrap_err();
+        let e = crate::diag::with_deadline(Some(deadline), || newton(&Convergence::default(), false, 2.0, &mut s))
+            .unwrap_err();
         assert_eq!(e.kind, crate::diag::ErrorKind::TimeLimit);
         assert_eq!(e.msg, "time limit of 0 s exceeded during Newton iteration 1 at INST=2");
         assert_eq!(s.x, 1.0, "no correction past the deadline");
@@ -406,7 +367,7 @@ mod tests {
     #[test]
     fn a_linear_solve_is_one_correction() {
         let mut s = Sqrt2 { x: 1.0 };
-        let c = newton(&args(), &Convergence::default(), true, 0.0, &mut s).unwrap();
+        let c = newton(&Convergence::default(), true, 0.0, &mut s).unwrap();
         assert_eq!(c.iters, 1);
         assert_eq!(s.x, 1.5);
     }

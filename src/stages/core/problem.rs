@@ -1,9 +1,11 @@
 //! The checked elastic problem of a model and material field: modelisation, bulk cells, materials, dof numbering.
 
+use super::settings::Settings;
 use crate::concepts::model::{Material, MaterialField, Role};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
 use crate::fem::dofs::DofNumbering;
+use crate::fem::elastic::Elastic;
 use crate::fem::elasticity::{IsoElastic, Modelisation};
 use crate::mesh::Mesh;
 use std::rc::Rc;
@@ -152,6 +154,16 @@ pub fn problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<Problem> {
     Ok(Problem { mesh, modelisation, bulk, materials, numbering })
 }
 
-pub fn coords_of(mesh: &Mesh, cell: usize) -> Vec<[f64; 3]> {
-    mesh.cells[cell].iter().map(|&n| mesh.coords[n]).collect()
+pub use crate::fem::elastic::coords_of;
+
+/// The elastic physics of a solving command's model and material field: element stiffnesses computed
+/// once, one solve per step for MECA_STATIQUE, SIEF_ELGA unless OPTION='SANS'.
+pub fn elastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Elastic> {
+    let p = problem(&cfg.model, chmat).map_err(|e| e.at(cfg.span))?;
+    let skin: Vec<bool> = {
+        let m = cfg.model.model()?;
+        m.elements.iter().map(|e| e.as_ref().is_some_and(|e| e.role == Role::Skin)).collect()
+    };
+    Elastic::new(p.mesh, p.modelisation, p.bulk, skin, p.materials, p.numbering, cfg.statics(), cfg.sief)
+        .map_err(|e| e.at(cfg.span))
 }

@@ -1,13 +1,8 @@
-//! SOLVEUR options, the solve of a reduced system with singular unknowns named, and the fields of a step.
+//! SOLVEUR as we run it, the messages of a solve that fails (singular unknowns named) and the solver's log.
 
-use super::problem::{coords_of, Problem};
 use crate::catalog::args::Args;
-use crate::concepts::result::Field;
-use crate::diag::{Error, Result};
-use crate::fem::dofs::DofMap;
-use crate::fem::elasticity::{self};
+use crate::diag::Result;
 use crate::solve::{self, Ordering, SolverOptions};
-use std::collections::BTreeMap;
 
 /// SOLVEUR as we run it: the options, and the log line that says how Code_Aster's keywords were mapped.
 #[derive(Debug, Clone)]
@@ -138,86 +133,4 @@ pub fn solve_error(e: solve::SolveError, opts: &SolverOptions, label: &dyn Fn(us
         }
         other => other.to_string(),
     }
-}
-
-/// Solve, turning a singular matrix into a message naming the unknowns.
-pub fn solve_reduced(
-    a: &Args,
-    p: &Problem,
-    map: &DofMap,
-    k: &faer::sparse::SparseColMat<usize, f64>,
-    rhs: &[f64],
-    opts: &SolverOptions,
-) -> Result<solve::Solution> {
-    // A nan or an infinity in the data (E, NU, a load, a coordinate) reaches the system as such: name
-    // it, rather than let the factorisation call the system singular.
-    let name = |dofs: &[usize]| -> String {
-        let names: Vec<String> =
-            dofs.iter().take(6).map(|&d| p.numbering.label(map.free_to_full[d], Some(&p.mesh))).collect();
-        names.join(", ")
-    };
-    let (col_ptr, values) = (k.col_ptr(), k.val());
-    let bad_k: Vec<usize> =
-        (0..k.ncols()).filter(|&j| values[col_ptr[j]..col_ptr[j + 1]].iter().any(|v| !v.is_finite())).collect();
-    if !bad_k.is_empty() {
-        return Err(a.err(
-            "CHAM_MATER",
-            format!(
-                "the stiffness is not finite (nan or infinite) at unknowns {}: check the material (E, NU) and the mesh",
-                name(&bad_k)
-            ),
-        ));
-    }
-    let bad_f: Vec<usize> = (0..rhs.len()).filter(|&d| !rhs[d].is_finite()).collect();
-    if !bad_f.is_empty() {
-        return Err(a.err(
-            "EXCIT",
-            format!(
-                "the loads are not finite (nan or infinite) at unknowns {}: check the values of the loads",
-                name(&bad_f)
-            ),
-        ));
-    }
-    solve::solve(k.as_ref(), rhs, opts).map_err(|e| {
-        let singular = matches!(e, solve::SolveError::Singular { .. });
-        let msg = solve_error(e, opts, &|d| p.numbering.label(map.free_to_full[d], Some(&p.mesh)));
-        if singular {
-            a.err("EXCIT", msg)
-        } else {
-            Error::runtime(msg).at(a.span)
-        }
-    })
-}
-
-/// DEPL (and SIEF_ELGA) of a full displacement vector.
-pub fn step_fields(p: &Problem, u: &[f64], with_sief: bool) -> Result<BTreeMap<String, Field>> {
-    let mesh = &p.mesh;
-    let md = p.modelisation;
-    let dim = md.dim();
-    let mut depl = vec![f64::NAN; mesh.coords.len() * dim];
-    for (d, v) in u.iter().enumerate() {
-        let (node, k) = p.numbering.node_comp(d);
-        depl[node * dim + k] = *v;
-    }
-    let comps: Vec<String> = ["DX", "DY", "DZ"][..dim].iter().map(|s| s.to_string()).collect();
-    let mut fields = BTreeMap::new();
-    fields.insert("DEPL".to_string(), Field::Node { components: comps, values: depl });
-    if with_sief {
-        let mut cells = vec![None; mesh.cells.len()];
-        for &c in &p.bulk {
-            let ue: Vec<f64> = p.numbering.cell_dofs(&mesh.cells[c]).unwrap().iter().map(|&d| u[d]).collect();
-            let g = elasticity::gauss_fields(
-                md,
-                &p.materials[c].as_ref().unwrap().0,
-                mesh.cell_types[c],
-                &coords_of(mesh, c),
-                &ue,
-            )
-            .map_err(|e| Error::runtime(e.to_string()))?;
-            cells[c] = Some(g.sig.iter().flat_map(|s| s[..md.nsig()].to_vec()).collect());
-        }
-        let names = md.sigma_names().iter().map(|s| s.to_string()).collect();
-        fields.insert("SIEF_ELGA".to_string(), Field::Elga { components: names, cells });
-    }
-    Ok(fields)
 }

@@ -263,7 +263,7 @@ mod tests {
         let globals: crate::interp::Scope = Default::default();
         let form =
             crate::interp::Formula::new("SIG_N * X1 + 1", vec!["SIG_N".into(), "X1".into()], vec![], globals).unwrap();
-        let form = Concept::new(ConceptKind::Formule, ConceptData::Formula(form));
+        let form = Concept::new(ConceptKind::Formule, ConceptData::Formula(form.into_concept()));
         // Cell 0: the formula; cell 1: the zero function; cell 2: nothing.
         let funcs = vec![Some(vec![Some(form.clone())]), Some(vec![None]), None];
         let siro = Field::Elem {

@@ -127,38 +127,42 @@ pub fn calc_champ_hm(
                 "SIGM_ELNO" => Field::Elno { components: sigma_names.clone(), cells: fields.sigm_elno.clone() },
                 "SIGM_NOEU" => Field::Node {
                     components: sigma_names.clone(),
-                    values: super::calc_champ::to_nodes(&p.mesh, &fields.sigm_elno, ns),
+                    values: crate::fem::postpro::to_nodes(&p.mesh, &fields.sigm_elno, ns),
                 },
                 "SIEF_ELNO" => Field::Elno { components: fields.sief_names.clone(), cells: fields.sief_elno.clone() },
                 "SIEF_NOEU" => Field::Node {
                     components: fields.sief_names.clone(),
-                    values: super::calc_champ::to_nodes(&p.mesh, &fields.sief_elno, fields.sief_names.len()),
+                    values: crate::fem::postpro::to_nodes(&p.mesh, &fields.sief_elno, fields.sief_names.len()),
                 },
                 "EPSI_ELGA" => Field::Elga { components: eps_names.clone(), cells: fields.epsi_elga.clone() },
                 "EPSI_ELNO" => Field::Elno { components: eps_names.clone(), cells: fields.epsi_elno.clone() },
                 "EPSI_NOEU" => Field::Node {
                     components: eps_names.clone(),
-                    values: super::calc_champ::to_nodes(&p.mesh, &fields.epsi_elno, ns),
+                    values: crate::fem::postpro::to_nodes(&p.mesh, &fields.epsi_elno, ns),
                 },
                 "VARI_ELNO" => Field::Elno { components: fields.vari_names.clone(), cells: fields.vari_elno.clone() },
                 "VARI_NOEU" => Field::Node {
                     components: fields.vari_names.clone(),
-                    values: super::calc_champ::to_nodes(&p.mesh, &fields.vari_elno, fields.vari_names.len()),
+                    values: crate::fem::postpro::to_nodes(&p.mesh, &fields.vari_elno, fields.vari_names.len()),
                 },
                 "SIEQ_ELGA" | "SIEQ_ELNO" | "SIEQ_NOEU" => {
                     let src = if o == "SIEQ_ELGA" { &fields.sigm_elga } else { &fields.sigm_elno };
                     let cells: Vec<Option<Vec<f64>>> = src
                         .iter()
                         .map(|c| {
-                            c.as_ref().map(|v| v.chunks(ns).flat_map(super::calc_champ::equivalent_stresses).collect())
+                            c.as_ref()
+                                .map(|v| v.chunks(ns).flat_map(crate::fem::postpro::equivalent_stresses).collect())
                         })
                         .collect();
-                    let names: Vec<String> = super::calc_champ::SIEQ_COMPONENTS.iter().map(|s| s.to_string()).collect();
+                    let names: Vec<String> =
+                        crate::fem::postpro::SIEQ_COMPONENTS.iter().map(|s| s.to_string()).collect();
                     let n = names.len();
                     match o.as_str() {
                         "SIEQ_ELGA" => Field::Elga { components: names, cells },
                         "SIEQ_ELNO" => Field::Elno { components: names, cells },
-                        _ => Field::Node { components: names, values: super::calc_champ::to_nodes(&p.mesh, &cells, n) },
+                        _ => {
+                            Field::Node { components: names, values: crate::fem::postpro::to_nodes(&p.mesh, &cells, n) }
+                        }
                     }
                 }
                 _ => {
@@ -184,7 +188,7 @@ pub fn calc_champ_hm(
                         "EPEQ_ELNO" => Field::Elno { components: names, cells },
                         _ => Field::Node {
                             components: names,
-                            values: super::calc_champ::to_nodes(&p.mesh, &cells, EPEQ_COMPONENTS.len()),
+                            values: crate::fem::postpro::to_nodes(&p.mesh, &cells, EPEQ_COMPONENTS.len()),
                         },
                     }
                 }

@@ -1,69 +1,54 @@
-//! MECA_STATIQUE (linear elastic statics): model + material field + loads → assembled, reduced, solved
-//! on the shared core; the run log states the size of the system, what was eliminated and the time of each
-//! phase.
+//! MECA_STATIQUE (linear elastic statics): the elastic physics of the model (`fem::elastic`) on the core's
+//! driver, one solve; the run log states the size of the system, what was eliminated and the time of
+//! each phase.
 
 use crate::catalog::args::Args;
-use crate::concepts::result::{ResultData, Step};
+use crate::concepts::result::ResultData;
 use crate::concepts::ConceptData;
 use crate::diag::Result;
+use crate::fem::physics::Physics;
+use crate::stages::core::driver::{Driver, StepLog};
+use crate::stages::core::problem::elastic;
+use crate::stages::core::settings::{Command, PhysicsKind, Settings};
+use crate::stages::core::solver::solver_log;
 use crate::stages::Ctx;
-
-use crate::stages::core::assembly::{assemble, System};
-use crate::stages::core::problem::problem;
-use crate::stages::core::solver::{solve_reduced, solver_log, solveur, step_fields};
 use std::time::Instant;
+
 pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    if let Some(mo) = a.concept("MODELE") {
-        if mo.model()?.xfem.is_some() {
-            return super::xfem::meca_statique_xfem(ctx, a, &mo);
-        }
-    }
-    // RESULTAT (adding a step to a result) and INST_FIN are not implemented.
-    a.refuse(&["CARA_ELEM", "LIST_INST", "SENSIBILITE", "RESULTAT", "INST_FIN"])?;
-    if let Some(o) = a.text("OPTION") {
-        if o != "SIEF_ELGA" && o != "SANS" {
-            return Err(a.err("OPTION", format!("OPTION='{o}' is not supported yet")));
-        }
+    let cfg = Settings::read(a, Command::MecaStatique)?;
+    if cfg.physics == PhysicsKind::Xfem {
+        return super::xfem::meca_statique_xfem(ctx, &cfg);
     }
     let t_all = Instant::now();
-    let model = a.req_concept("MODELE")?;
-    let chmat = a.concept("CHAM_MATER").ok_or_else(|| a.err("CHAM_MATER", "a material field is required"))?;
-    let inst = a.reals("INST").first().copied().unwrap_or(0.0);
-    let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
-    let md = p.modelisation;
-    let System { map, k, rhs, t_numbering, t_assembly } = assemble(a, &p, &model, inst)?;
-
-    // Solve.
-    let sv = solveur(a)?;
-    let sol = solve_reduced(a, &p, &map, &k, &rhs, &sv.opts)?;
-    let u = map.expand(&sol.x);
-
-    // Fields.
-    let t0 = Instant::now();
-    let fields = step_fields(&p, &u, a.text("OPTION") != Some("SANS"))?;
-    let t_post = t0.elapsed();
+    let chmat = cfg.chmat()?;
+    let p = elastic(&cfg, &chmat)?;
+    let t_setup = t_all.elapsed();
+    let mut u = vec![0.0; p.unknowns()];
+    let mut log = StepLog::default();
+    let steps = Driver::new(&cfg, &p, cfg.solveur.opts).run(&mut u, &mut (), false, &mut log)?;
+    let (info, residual, refinements) = log.last_solve.clone().expect("one solve");
+    let t = &log.solver;
+    let eliminated = log.eliminated.iter().filter(|e| **e).count();
+    let total = t_all.elapsed().as_secs_f64();
+    let (t_fact, t_solve) = ((t.symbolic + t.factorization + t.condition).as_secs_f64(), t.solve.as_secs_f64());
     ctx.io.mess(&format!(
-        "  linear statics ({}): {} unknowns, {} eliminated by kinematic conditions, {} solved ({:?}); residual {:.1e}\n  \
-         time: numbering {:.3} s, assembly {:.3} s, factorization {:.3} s, solve {:.3} s, fields {:.3} s, total {:.3} s\n",
-        md.name(),
-        map.nfull,
-        map.n_eliminated(),
-        map.nfree,
-        sol.method,
-        sol.residual,
-        t_numbering.as_secs_f64(),
-        t_assembly.as_secs_f64(),
-        (sol.timings.symbolic + sol.timings.factorization + sol.timings.condition).as_secs_f64(),
-        sol.timings.solve.as_secs_f64(),
-        t_post.as_secs_f64(),
-        t_all.elapsed().as_secs_f64()
+        "  linear statics ({}): {} unknowns, {eliminated} eliminated by kinematic conditions, {} solved ({:?}); \
+         residual {residual:.1e}\n  \
+         time: element stiffnesses {:.3} s, assembly {:.3} s, factorization {t_fact:.3} s, solve {t_solve:.3} s, \
+         fields and the rest {:.3} s, total {total:.3} s\n",
+        p.modelisation.name(),
+        p.unknowns(),
+        log.solved,
+        info.method.unwrap_or(crate::solve::Method::Lu),
+        t_setup.as_secs_f64(),
+        log.assembly,
+        total - t_setup.as_secs_f64() - log.assembly - t_fact - t_solve,
     ));
-    ctx.io.mess(&solver_log(&sv, &sol.info, sol.residual, sol.refinements));
-    let loads = a.facts("EXCIT").iter().filter_map(|o| o.concept("CHARGE")).collect();
+    ctx.io.mess(&solver_log(&cfg.solveur, &info, residual, refinements));
     Ok(Some(ConceptData::Result(ResultData {
-        model,
+        model: cfg.model.clone(),
         material: Some(chmat),
-        loads,
-        steps: vec![Step { nume_ordre: 1, inst, fields }],
+        loads: cfg.loads(),
+        steps,
     })))
 }

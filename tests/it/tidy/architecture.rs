@@ -276,3 +276,198 @@ fn edges_resolve_super_and_brace_lists() {
         ]
     );
 }
+
+/// The files a file's code names (the module files its `crate::`/`super::` paths land in), itself excluded.
+fn file_edges(files: &[(Vec<String>, String)]) -> BTreeMap<Vec<String>, BTreeSet<Vec<String>>> {
+    let modules: BTreeSet<&Vec<String>> = files.iter().map(|(m, _)| m).collect();
+    let mut out = BTreeMap::new();
+    for (m, text) in files {
+        let mut targets = BTreeSet::new();
+        for e in edges(m, text) {
+            // The longest prefix of the path that is a file of ours.
+            let Some(k) = (1..=e.len()).rev().find(|&k| modules.contains(&e[..k].to_vec())) else { continue };
+            if e[..k] != m[..] {
+                targets.insert(e[..k].to_vec());
+            }
+        }
+        out.insert(m.clone(), targets);
+    }
+    out
+}
+
+/// The import cycles among files: every strongly connected component of more than one file (Tarjan).
+fn cycles(files: &[(Vec<String>, String)]) -> Vec<Vec<String>> {
+    let graph = file_edges(files);
+    let nodes: Vec<&Vec<String>> = graph.keys().collect();
+    let index_of: BTreeMap<&Vec<String>, usize> = nodes.iter().enumerate().map(|(i, n)| (*n, i)).collect();
+    let adj: Vec<Vec<usize>> =
+        nodes.iter().map(|n| graph[*n].iter().filter_map(|t| index_of.get(t).copied()).collect()).collect();
+    struct T {
+        index: Vec<Option<usize>>,
+        low: Vec<usize>,
+        on: Vec<bool>,
+        stack: Vec<usize>,
+        next: usize,
+        out: Vec<Vec<usize>>,
+    }
+    fn visit(v: usize, adj: &[Vec<usize>], t: &mut T) {
+        t.index[v] = Some(t.next);
+        t.low[v] = t.next;
+        t.next += 1;
+        t.stack.push(v);
+        t.on[v] = true;
+        for &w in &adj[v] {
+            match t.index[w] {
+                None => {
+                    visit(w, adj, t);
+                    t.low[v] = t.low[v].min(t.low[w]);
+                }
+                Some(iw) if t.on[w] => t.low[v] = t.low[v].min(iw),
+                _ => {}
+            }
+        }
+        if Some(t.low[v]) == t.index[v] {
+            let mut comp = Vec::new();
+            while let Some(w) = t.stack.pop() {
+                t.on[w] = false;
+                comp.push(w);
+                if w == v {
+                    break;
+                }
+            }
+            if comp.len() > 1 {
+                t.out.push(comp);
+            }
+        }
+    }
+    let n = nodes.len();
+    let mut t =
+        T { index: vec![None; n], low: vec![0; n], on: vec![false; n], stack: Vec::new(), next: 0, out: Vec::new() };
+    for v in 0..n {
+        if t.index[v].is_none() {
+            visit(v, &adj, &mut t);
+        }
+    }
+    let mut out: Vec<Vec<String>> = t
+        .out
+        .into_iter()
+        .map(|c| {
+            let mut names: Vec<String> = c.into_iter().map(|i| format!("src/{}", nodes[i].join("/"))).collect();
+            names.sort();
+            names
+        })
+        .collect();
+    out.sort();
+    out
+}
+
+/// No file of `src/` imports, through others, a file that imports it: every module reads as a
+/// pipeline, each layer below the ones that use it.
+#[test]
+fn no_import_cycles() {
+    // The cycles left from before this check, being broken; the list only shrinks (a cycle that is gone
+    // must leave it, so it cannot come back unseen).
+    const LEFT: &[&[&str]] =
+        &[&["src/xfem/discrete", "src/xfem/model"], &["src/xfem/topose", "src/xfem/topose_linear"]];
+    let files = sources(&root().join("src"));
+    let mut c = cycles(&files);
+    for left in LEFT {
+        let at = c.iter().position(|c| c == left);
+        assert!(at.is_some(), "the cycle {} is gone: remove it from LEFT", left.join(" ↔ "));
+        c.remove(at.unwrap());
+    }
+    assert!(
+        c.is_empty(),
+        "import cycles among files:\n  {}",
+        c.iter().map(|c| c.join(" ↔ ")).collect::<Vec<_>>().join("\n  ")
+    );
+}
+
+/// The cycle check is shown to fail once, on a test-only loop: a physics library that calls back into
+/// the driver that uses it.
+#[test]
+fn a_test_only_import_cycle_is_caught() {
+    let mut files = sources(&root().join("src"));
+    let path = |s: &str| s.split('/').map(String::from).collect::<Vec<_>>();
+    files.push((path("fem/extra_a"), "use super::extra_b::B;\n".into()));
+    files.push((path("fem/extra_b"), "fn f() { crate::fem::extra_a::g(); }".into()));
+    let c = cycles(&files);
+    assert!(c.iter().any(|c| c == &["src/fem/extra_a", "src/fem/extra_b"]), "{c:#?}");
+}
+
+/// The keywords every solving command shares, read once into `stages::core::settings::Settings`.
+const SHARED_SOLVING_KEYWORDS: [&str; 13] = [
+    "MODELE",
+    "CHAM_MATER",
+    "EXCIT",
+    "INCREMENT",
+    "CONVERGENCE",
+    "NEWTON",
+    "SOLVEUR",
+    "ARCHIVAGE",
+    "ETAT_INIT",
+    "COMPORTEMENT",
+    "SCHEMA_THM",
+    "CONTACT",
+    "OPTION",
+];
+
+/// The lookups of a solving command's shared keywords made by the solving family's own files: each is
+/// `file: lookup`. `Args` lookups are calls of a method on a keyword's name (`a.fact("EXCIT")`).
+fn shared_keyword_lookups(files: &[(Vec<String>, String)]) -> Vec<String> {
+    const LOOKUPS: [&str; 21] = [
+        "get",
+        "declares",
+        "has",
+        "given",
+        "vals",
+        "val",
+        "text",
+        "texts",
+        "real",
+        "reals",
+        "int",
+        "ints",
+        "concept",
+        "concepts",
+        "facts",
+        "fact",
+        "req_text",
+        "req_real",
+        "req_concept",
+        "concept_of",
+        "has_if_declared",
+    ];
+    let mut out = Vec::new();
+    for (m, text) in files {
+        if m.len() < 2 || m[0] != "stages" || m[1] != "solve" {
+            continue;
+        }
+        for kw in SHARED_SOLVING_KEYWORDS {
+            for l in LOOKUPS {
+                let call = format!(".{l}(\"{kw}\")");
+                if code(text).contains(&call) {
+                    out.push(format!("src/{}: {call}", m.join("/")));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The physics seam: the solving stages (`stages/solve`) get their shared keywords typed from
+/// `core::settings`, and never read them again. Shown to fail once on a test-only file.
+#[test]
+fn solving_stages_read_their_shared_keywords_through_the_settings() {
+    let mut files = sources(&root().join("src"));
+    assert!(shared_keyword_lookups(&files).is_empty(), "{:#?}", shared_keyword_lookups(&files));
+    let settings = files.iter().find(|(m, _)| m.join("/") == "stages/core/settings").expect("core::settings");
+    for kw in SHARED_SOLVING_KEYWORDS {
+        assert!(code(&settings.1).contains(&format!("\"{kw}\"")), "core::settings does not read {kw}");
+    }
+    files.push((
+        vec!["stages".into(), "solve".into(), "extra".into()],
+        "fn f(a: &Args) { a.fact(\"CONVERGENCE\"); }".into(),
+    ));
+    assert_eq!(shared_keyword_lookups(&files), ["src/stages/solve/extra: .fact(\"CONVERGENCE\")"]);
+}

@@ -86,11 +86,10 @@ fn int_after(text: &str, label: &str) -> Option<usize> {
     text[i..].trim_start().split(|c: char| !c.is_ascii_digit()).next()?.parse().ok()
 }
 
-/// Newton iterations of the (single) step: third column of the line after the header.
+/// Newton iterations of the (single) step: the number after `iterations` on its `INST …` line.
 fn iterations(mess: &str) -> Option<usize> {
-    let mut lines = mess.lines().skip_while(|l| !l.contains("INST  iters"));
-    lines.next()?;
-    lines.next()?.split_whitespace().nth(2)?.parse().ok()
+    let line = mess.lines().find(|l| l.trim_start().starts_with("INST ") && l.contains("iterations"))?;
+    int_after(line, "iterations")
 }
 
 /// Largest |VALE_CALC| of the ERR_X / ERR_Y lip checks, relative to U.

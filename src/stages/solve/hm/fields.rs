@@ -1,87 +1,24 @@
-//! The fields of an HM state (DEPL, SIEF_ELGA, VARI_ELGA) and the initial state of ETAT_INIT.
+//! The initial state of ETAT_INIT of an HM STAT_NON_LINE.
 
-use crate::catalog::args::Args;
 use crate::concepts::result::Field;
 use crate::diag::Result;
-use crate::hm::element::Variant;
 use crate::hm::law::PointState;
+use crate::hm::physics::sief_components;
 use crate::stages::core::hm::HmProblem;
-use std::collections::BTreeMap;
-
-/// The components of SIEF_ELGA on an HM element (Code_Aster's ECONTPG: σ', σ_p, M, w).
-pub fn sief_components(dim: usize) -> Vec<String> {
-    let mut v: Vec<String> =
-        ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ", "SIPXX", "SIPYY", "SIPZZ", "SIPXY", "SIPXZ", "SIPYZ", "M11"]
-            .iter()
-            .map(|s| s.to_string())
-            .collect();
-    v.extend(["FH11X", "FH11Y", "FH11Z"][..dim].iter().map(|s| s.to_string()));
-    v
-}
-
-/// The internal variables of KIT_HM (ELAS, LIQU_SATU, HYDR_UTIL): V1 the skeleton's (none for ELAS),
-/// V2 = ρ − ρ₀ (RHOLIQ), V3 = φ − φ₀ (POROSITE).
-pub const VARI_COMPONENTS: [&str; 3] = ["V1", "V2", "V3"];
-
-/// DEPL, SIEF_ELGA and VARI_ELGA of a state.
-pub fn step_fields(p: &HmProblem, u: &[f64], states: &[Vec<PointState>]) -> BTreeMap<String, Field> {
-    let num = &p.numbering;
-    let nc = num.ncomp;
-    let mut values = vec![f64::NAN; p.mesh.nnodes() * nc];
-    for (d, v) in u.iter().enumerate() {
-        let (n, k) = num.node_comp(d);
-        values[n * nc + k] = *v;
-    }
-    let components = num.components.iter().map(|s| s.to_string()).collect();
-    let dim = p.kin.dim();
-    let sief_c = sief_components(dim);
-    let mut sief: Vec<Option<Vec<f64>>> = vec![None; p.mesh.cells.len()];
-    let mut vari: Vec<Option<Vec<f64>>> = vec![None; p.mesh.cells.len()];
-    for ((c, cell), st) in p.elements().zip(states) {
-        let ngauss =
-            if p.variant == Variant::Selective { st.len() - p.mesh.cell_types[c].nvertices() } else { st.len() };
-        let mut s = Vec::with_capacity(st.len() * sief_c.len());
-        let mut v = Vec::with_capacity(st.len() * 3);
-        for (k, ps) in st.iter().enumerate() {
-            // The vertex points of an S element hold the effective stress of Gauss point k (Code_Aster copies it).
-            let sig = if k >= ngauss { st[k - ngauss].sig } else { ps.sig };
-            s.extend_from_slice(&sig);
-            s.extend_from_slice(&ps.sigp);
-            s.push(ps.m);
-            s.extend_from_slice(&ps.w[..dim]);
-            v.extend([0.0, ps.rho - cell.mat.rho_l, ps.phi - cell.mat.phi0]);
-        }
-        sief[c] = Some(s);
-        vari[c] = Some(v);
-    }
-    let mut f = BTreeMap::new();
-    f.insert("DEPL".to_string(), Field::Node { components, values });
-    f.insert("SIEF_ELGA".to_string(), Field::Elga { components: sief_c, cells: sief });
-    f.insert(
-        "VARI_ELGA".to_string(),
-        Field::Elga { components: VARI_COMPONENTS.iter().map(|s| s.to_string()).collect(), cells: vari },
-    );
-    f
-}
+use crate::stages::core::settings::Settings;
 
 /// The initial unknowns and point states: ETAT_INIT's DEPL (the components the model carries; the
 /// others are passed over, as Code_Aster does), SIGM (σ', σ_p, M, w at the points; a component the
 /// field lacks is zero) and VARI (ρ − ρ₀, φ − φ₀); zero and the material's initial state otherwise.
-pub fn initial_state(a: &Args, p: &HmProblem) -> Result<(Vec<f64>, Vec<Vec<PointState>>)> {
+pub fn initial_state(cfg: &Settings, p: &HmProblem) -> Result<(Vec<f64>, Vec<Vec<PointState>>)> {
     let num = &p.numbering;
     let mut u = vec![0.0; num.ndofs()];
-    let init = a.fact("ETAT_INIT");
+    let init = cfg.initial.as_ref();
     if let Some(e) = init {
-        e.refuse(&["EVOL_NOLI", "NUME_ORDRE", "INST", "STRX", "COHE", "NUME_DIDI", "INST_ETAT_INIT"])?;
-        for k in ["CRITERE", "PRECISION"] {
-            if e.declares(k) {
-                e.has(k);
-            }
-        }
-        if let Some(c) = e.concept("DEPL") {
-            let fd = c.field().map_err(|er| e.err("DEPL", er.msg))?;
+        if let Some(c) = &e.depl {
+            let fd = c.field().map_err(|er| cfg.err("ETAT_INIT/DEPL", er.msg))?;
             let Field::Node { components, values } = &fd.field else {
-                return Err(e.err("DEPL", format!("{} is not a nodal field (CHAM_NO)", c.label())));
+                return Err(cfg.err("ETAT_INIT/DEPL", format!("{} is not a nodal field (CHAM_NO)", c.label())));
             };
             let ncf = components.len();
             for (d, ud) in u.iter_mut().enumerate() {
@@ -104,11 +41,12 @@ pub fn initial_state(a: &Args, p: &HmProblem) -> Result<(Vec<f64>, Vec<Vec<Point
         .collect();
     let Some(e) = init else { return Ok((u, states)) };
     let dim = p.kin.dim();
-    if let Some(c) = e.concept("SIGM") {
-        let fd = c.field().map_err(|er| e.err("SIGM", er.msg))?;
+    if let Some(c) = &e.sigm {
+        let fd = c.field().map_err(|er| cfg.err("ETAT_INIT/SIGM", er.msg))?;
         let sief = sief_components(dim);
         for ((cell_id, _), st) in p.elements().zip(states.iter_mut()) {
-            let Some(vals) = cell_values(&fd.field, cell_id, st.len()).map_err(|m| e.err("SIGM", m))? else {
+            let Some(vals) = cell_values(&fd.field, cell_id, st.len()).map_err(|m| cfg.err("ETAT_INIT/SIGM", m))?
+            else {
                 continue;
             };
             let get = point_reader(fd.field.components(), &vals);
@@ -124,10 +62,11 @@ pub fn initial_state(a: &Args, p: &HmProblem) -> Result<(Vec<f64>, Vec<Vec<Point
             }
         }
     }
-    if let Some(c) = e.concept("VARI") {
-        let fd = c.field().map_err(|er| e.err("VARI", er.msg))?;
+    if let Some(c) = &e.vari {
+        let fd = c.field().map_err(|er| cfg.err("ETAT_INIT/VARI", er.msg))?;
         for ((cell_id, cell), st) in p.elements().zip(states.iter_mut()) {
-            let Some(vals) = cell_values(&fd.field, cell_id, st.len()).map_err(|m| e.err("VARI", m))? else {
+            let Some(vals) = cell_values(&fd.field, cell_id, st.len()).map_err(|m| cfg.err("ETAT_INIT/VARI", m))?
+            else {
                 continue;
             };
             let get = point_reader(fd.field.components(), &vals);

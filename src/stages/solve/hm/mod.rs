@@ -1,15 +1,10 @@
 //! STAT_NON_LINE on saturated hydro-mechanical models: `KIT_HM` = (`ELAS`, `LIQU_SATU`, `HYDR_UTIL`) on
 //! the `*_HM`, `*_HMD`, `*_HMS` and `*_HM_SI` modelisations, as Code_Aster computes it
-//! (`../shared/docs/hm-coupled-formulation.md`).
+//! (`../shared/docs/hm-coupled-formulation.md`), on the core's driver (`stages::core::driver`) with the
+//! physics of `hm::physics`.
 //!
-//! - `setup`: the keywords (COMPORTEMENT, SCHEMA_THM, ARCHIVAGE, ETAT_INIT) and the loads of EXCIT at an
-//!   instant: the kinematic conditions (DX DY DZ PRE1) and the external forces, FLUX_THM_REP on the
-//!   pressures.
-//! - `step`: one time step, a Newton loop whose first iteration is Code_Aster's prediction (the tangent
-//!   at the start of the step, the prescribed increments, the internal forces of the start state), with
-//!   the relative residual over all equations Code_Aster tests; the cutting of a step that fails when
-//!   DEFI_LIST_INST asks for it.
-//! - `fields`: DEPL, SIEF_ELGA and VARI_ELGA of a state, and ETAT_INIT read back into one.
+//! - `setup`: COMPORTEMENT and the run report.
+//! - `fields`: ETAT_INIT read back into a state.
 //!
 //! Only the effects the scene calls for are computed: a pressure prescribed everywhere it exists removes
 //! the hydraulic equations (the unknowns are eliminated and the log says so), and the log names the
@@ -17,60 +12,38 @@
 
 mod fields;
 mod setup;
-mod step;
 
-use crate::catalog::args::Args;
-use crate::concepts::result::{ResultData, Step};
-use crate::concepts::{ConceptData, ConceptRef};
+use crate::concepts::result::ResultData;
+use crate::concepts::ConceptData;
 use crate::diag::Result;
+use crate::stages::core::driver::{Driver, StepLog};
 use crate::stages::core::hm::hm_problem;
-use crate::stages::core::newton::{instants, subdivision, Convergence};
-use crate::stages::core::solver::solver_options;
+use crate::stages::core::settings::Settings;
 use crate::stages::Ctx;
 use std::time::Instant;
 
-pub fn stat_non_line_hm(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result<Option<ConceptData>> {
+pub fn stat_non_line_hm(ctx: &mut Ctx, cfg: &Settings) -> Result<Option<ConceptData>> {
     let t_start = Instant::now();
-    a.refuse(&["CONTACT"])?;
-    crate::stages::core::newton::refuse_unsupported_options_except(a, &["ETAT_INIT", "ARCHIVAGE"])?;
-    setup::behaviour(a)?;
-    let theta = setup::theta(a)?;
-    let conv = Convergence::from_args(a)?;
-    let chmat = a.req_concept("CHAM_MATER")?;
-    let p = hm_problem(model, &chmat).map_err(|e| e.at(a.span_of("MODELE")))?;
-    let times = instants(a)?;
-    let subd = subdivision(a);
-    let archive = crate::stages::core::newton::Archive::from_args(a, &times)?;
-    // The HM tangent is symmetric only once its pressure rows are scaled, and not exactly (see
-    // `step::Driver::factor_solve`): ∂M/∂ε_v = ρ (b + (b − φ) ε_v) against ∂σ_p/∂p = −b, the density's
-    // derivative. The solver takes LDLᵀ of its lower triangle when the difference is below 1e-8 of its
-    // largest entry, refines against the matrix itself to round-off (LU takes over when it cannot), and
-    // LU beyond.
-    let opts = crate::solve::SolverOptions { method: crate::solve::Method::Auto, sym_tol: 1e-8, ..solver_options(a)? };
+    setup::behaviour(cfg)?;
+    let chmat = cfg.chmat()?;
+    let mut p = hm_problem(&cfg.model, &chmat).map_err(|e| e.at(cfg.span_of("MODELE")))?;
+    p.theta = cfg.theta;
+    // The HM tangent is symmetric only once its pressure rows are scaled by 1/ρ₀ of the liquid, and not
+    // exactly: ∂M/∂ε_v = ρ (b + (b − φ) ε_v) against ∂σ_p/∂p = −b, the density's derivative. The solver
+    // takes LDLᵀ of its lower triangle when the difference is below 1e-8 of its largest entry, refines
+    // against the matrix itself to round-off (LU takes over when it cannot), and LU beyond.
     let rho: Vec<f64> = p.elements().map(|(_, c)| c.mat.rho_l).collect();
-    let pressure_row_scale =
+    p.pressure_row_scale =
         if rho.iter().all(|&r| r == rho[0] && r > 0.0) { 1.0 / rho.first().copied().unwrap_or(1.0) } else { 0.0 };
-    let (mut u, mut states) = fields::initial_state(a, &p)?;
-    let mut steps = vec![Step { nume_ordre: 0, inst: times[0], fields: fields::step_fields(&p, &u, &states) }];
-    let mut log = step::StepLog::default();
-    let driver =
-        step::Driver { a, p: &p, conv, opts, theta, subd, analysis: std::cell::RefCell::new(None), pressure_row_scale };
-    for w in times.windows(2) {
-        let (t0, t1) = (w[0], w[1]);
-        driver.advance(t0, t1, &mut u, &mut states, 0, &mut log)?;
-        if archive.keeps(t1) {
-            let n = steps.len() as i64;
-            let mut fields = fields::step_fields(&p, &u, &states);
-            if t1 != *times.last().expect("instants") {
-                for f in &archive.excluded {
-                    fields.remove(f);
-                }
-            }
-            steps.push(Step { nume_ordre: n, inst: t1, fields });
-        }
-    }
-    let report = setup::report(&p, a, &times, theta, &log, steps.len(), t_start.elapsed().as_secs_f64())?;
-    ctx.io.mess(&report);
-    let loads = a.facts("EXCIT").iter().filter_map(|o| o.concept("CHARGE")).collect();
-    Ok(Some(ConceptData::Result(ResultData { model: model.clone(), material: Some(chmat), loads, steps })))
+    let opts = crate::solve::SolverOptions { method: crate::solve::Method::Auto, sym_tol: 1e-8, ..cfg.solveur.opts };
+    let (mut u, mut states) = fields::initial_state(cfg, &p)?;
+    let mut log = StepLog::default();
+    let steps = Driver::new(cfg, &p, opts).run(&mut u, &mut states, true, &mut log)?;
+    ctx.io.mess(&setup::report(&p, cfg, &log, steps.len(), t_start.elapsed().as_secs_f64()));
+    Ok(Some(ConceptData::Result(ResultData {
+        model: cfg.model.clone(),
+        material: Some(chmat),
+        loads: cfg.loads(),
+        steps,
+    })))
 }

@@ -2,26 +2,13 @@
 //! mortar couplings of each cohesive zone, and the cohesive law of each multiplier packet.
 
 use super::setup::Setup;
-use crate::catalog::args::Args;
 use crate::diag::{Error, Result};
 use crate::fem::dofs::DofMap;
 use crate::stages::core::problem::elastic_of;
-use crate::xfem::czm::CzmParams;
+use crate::stages::core::settings::Settings;
 use crate::xfem::discrete::{self, Coupling, XDofs};
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 use std::time::{Duration, Instant};
-
-/// A cohesive zone: its crack, law, facet rule and multiplier packets.
-pub struct Zone {
-    pub crack: usize,
-    pub params: CzmParams,
-    pub order: i64,
-    pub packets: Vec<Vec<usize>>,
-    pub packet_of: BTreeMap<usize, usize>,
-    pub edges: BTreeSet<(usize, usize)>,
-    /// The contact cells of the crack (`MAILFISS.CONT`), which carry its cohesive variables (COHE_ELEM).
-    pub cells: Vec<usize>,
-}
 
 /// A linear element: unknowns and matrix (row-major).
 pub struct Lin {
@@ -61,19 +48,19 @@ pub struct NullRelation {
 
 /// `fixed`: the unknowns the kinematic conditions prescribe, and `map` their elimination with the
 /// relations (at the first instant solved).
-pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> Result<Elements> {
+pub fn elements(cfg: &Settings, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> Result<Elements> {
     let t0 = Instant::now();
     let (mesh, xm, xd, md, ndim) = (&s.mesh, &s.xm, &s.xd, s.md, s.ndim());
     let mut lins: Vec<Lin> = Vec::new();
     // With coupled flow the bulk is the HM element of `flow`, not the elastic stiffness.
     for &c in s.model_cells.iter().filter(|_| s.flow.is_none()) {
-        let m = s.material(a, c)?;
-        let (law, _) = elastic_of(&m, &mesh.cell_names[c]).map_err(|e| e.at(a.span))?;
-        law.check(md).map_err(|e| a.err("CHAM_MATER", format!("cell {}: {e}", mesh.cell_names[c])))?;
+        let m = s.material(cfg, c)?;
+        let (law, _) = elastic_of(&m, &mesh.cell_names[c]).map_err(|e| e.at(cfg.span))?;
+        law.check(md).map_err(|e| cfg.err("CHAM_MATER", format!("cell {}: {e}", mesh.cell_names[c])))?;
         let nodes = &mesh.cells[c];
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
         let k = discrete::bulk_stiffness(mesh.cell_types[c], &coords, nodes, xm, c, &law.hooke(md), md.nsig(), ndim)
-            .map_err(|e| Error::runtime(format!("cell {}: {e}", mesh.cell_names[c])).at(a.span))?;
+            .map_err(|e| Error::runtime(format!("cell {}: {e}", mesh.cell_names[c])).at(cfg.span))?;
         lins.push(Lin { dofs: xd.cell_dofs(nodes), k });
     }
     let nbulk = lins.len();
@@ -84,13 +71,13 @@ pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> R
     // A node's jump in direction d is prescribed when every Heaviside unknown of the node in d is.
     let fixed_jump = |n: usize, d: usize| xd.sets[n].iter().all(|&b| fixed.contains(&(b + d)));
     for (zi, z) in s.zones.iter().enumerate() {
-        let rule = discrete::facet_rule(ndim, z.order).map_err(|e| a.err("CONTACT", e))?;
+        let rule = discrete::facet_rule(ndim, z.order).map_err(|e| cfg.err("CONTACT", e))?;
         let facets = s.facets(z.crack);
         // Heaviside sets with no facet to couple the sides they separate:
         // the interface would open freely where the scene glues it. An interface along a row or plane of
         // nodes has its facets on the cells of its − side; none is left when those are not in the model.
         if facets.is_empty() || z.packets.is_empty() {
-            return Err(a.err(
+            return Err(cfg.err(
                 "CONTACT",
                 format!(
                     "{}: the interface has no facet: no cell of the model is cut by it or lies on its − side \
@@ -99,7 +86,7 @@ pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> R
                 ),
             ));
         }
-        let crack_err = |e: String| a.err("CONTACT", format!("{}: {e}", xm.crack_names[z.crack]));
+        let crack_err = |e: String| cfg.err("CONTACT", format!("{}: {e}", xm.crack_names[z.crack]));
         let dead = discrete::dead_components(
             mesh,
             xm,
@@ -124,12 +111,12 @@ pub fn elements(a: &Args, s: &Setup, fixed: &BTreeSet<usize>, map: &DofMap) -> R
         }
         for (k, &mk) in m.iter().enumerate() {
             if mk <= 0.0 {
-                return Err(a.err(
+                return Err(cfg.err(
                     "CONTACT",
                     format!(
                         "{}: multiplier packet {:?} has no interface measure",
                         xm.crack_names[z.crack],
-                        super::report::names(mesh, &z.packets[k])
+                        super::setup::names(mesh, &z.packets[k])
                     ),
                 ));
             }

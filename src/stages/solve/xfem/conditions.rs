@@ -3,24 +3,16 @@
 //! (`xddlimf`); the elimination of fully prescribed hydraulics with its report; the rigid translations
 //! pinned under NPREC < 0.
 
-use super::report::names;
+use super::setup::names;
 use super::setup::Setup;
-use crate::catalog::args::Args;
-use crate::concepts::model::{LoadItem, LoadValue};
-use crate::concepts::{ConceptData, ConceptRef};
+use super::state::PorePressure;
 use crate::diag::Result;
 use crate::fem::dofs::Constraints;
-use crate::stages::core::assembly::loads;
-use crate::stages::core::eval::{eval_at, load_value};
+use crate::fem::physics::{Condition, Force, Load};
+use crate::stages::core::settings::Settings;
 use crate::xfem::conditions::{function_jumps, trace_sets};
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
-use std::rc::Rc;
-
-/// A function concept at time `t`, as a closure of the position.
-fn at_t(f: &ConceptRef, t: f64) -> impl Fn(&[f64; 3]) -> std::result::Result<f64, String> + '_ {
-    move |x| eval_at(f, x, t).map_err(|e| e.msg)
-}
 
 const HYDRAULIC: &[&str] = &["PRE1", "PRE_FLU", "LAG_FLI", "LAG_FLS", "PR2_FLU", "LA2_FLI", "LA2_FLS"];
 
@@ -78,13 +70,13 @@ pub struct Conditions {
 impl Conditions {
     /// Stop on a load this driver does not apply, or when a hydraulic unknown is free: this driver
     /// eliminates the hydraulics.
-    pub fn require_prescribed_hydraulics(&self, a: &Args) -> Result<()> {
+    pub fn require_prescribed_hydraulics(&self, cfg: &Settings) -> Result<()> {
         if let Some(e) = &self.unsupported {
             return Err(e.clone());
         }
         match &self.free_hydraulics {
             None => Ok(()),
-            Some(what) => Err(a.err(
+            Some(what) => Err(cfg.err(
                 "EXCIT",
                 format!(
                     "{what} is not prescribed: the flow must be solved, which X-FEM elements with cohesive \
@@ -95,19 +87,22 @@ impl Conditions {
     }
 }
 
-/// A pore pressure prescribed on every hydraulic unknown of an HM model: `pre1[n]` at each vertex `n`
-/// (0 elsewhere), `hpre1[n][j]` the Heaviside part of node `n`'s enrichment set `j` (`H<j+1>PRE1`).
-#[derive(Debug, Clone, PartialEq)]
-pub struct PorePressure {
-    pub pre1: Vec<f64>,
-    pub hpre1: Vec<Vec<f64>>,
+/// A load this driver does not apply (it may go to the HM driver, with coupled flow).
+fn unsupported_load(cfg: &Settings, s: &Setup, name: &str) -> crate::diag::Error {
+    cfg.err(
+        "EXCIT",
+        format!(
+            "load {name}: only DDL_IMPO, PRES_REP with FISSURE and PESANTEUR are supported yet on an X-FEM model{}",
+            if s.hm { " with cohesive interfaces or with every hydraulic unknown prescribed" } else { "" }
+        ),
+    )
 }
 
-/// The kinematic conditions of the loads at `t`, the report on the
+/// The kinematic conditions of the loads at an instant, the report on the
 /// hydraulic unknowns (HM models: all must be prescribed; the pore pressure
 /// they give acts on the skeleton), and the rigid translations pinned when
 /// NPREC < 0.
-pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Conditions> {
+pub fn constraints(cfg: &Settings, s: &Setup, loads: &[Load]) -> Result<Conditions> {
     let (mesh, xm, xd, ndim) = (&*s.mesh, &*s.xm, &s.xd, s.ndim());
     let mut cons = Constraints::new();
     let mut hydraulic: BTreeMap<(usize, String), f64> = BTreeMap::new();
@@ -116,77 +111,61 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Co
     let mut flux_loads: Vec<String> = Vec::new();
     let mut unsupported = None;
     let blocks = super::state::node_blocks(s);
-    for (lc, mult) in loads(a, t)? {
-        let data = lc.data();
-        let ConceptData::Load(load) = &*data else {
-            return Err(a.err("EXCIT", format!("{} is not a mechanical load", lc.label())));
-        };
-        if !Rc::ptr_eq(&load.model, model) {
-            return Err(
-                a.err("EXCIT", format!("load {} is defined on another model ({})", lc.label(), load.model.label()))
-            );
-        }
-        for item in &load.items {
-            let LoadItem::Dof { node, component, value } = item else {
-                // Lip pressures and gravity are forces (`super::forces`); nothing else is supported yet.
-                if matches!(item, LoadItem::CrackPressure { .. } | LoadItem::Gravity { .. }) {
-                    continue;
-                }
+    for load in loads {
+        let name = &load.name;
+        for item in &load.forces {
+            match item {
+                // Lip pressures and gravity are forces (`super::forces`).
+                Force::LipPressure { .. } | Force::Gravity { .. } => {}
                 // A fluid flux acts on the hydraulic equations only; they are eliminated when every
                 // hydraulic unknown is prescribed (checked below), and then it changes no unknown.
-                if s.hm && matches!(item, LoadItem::FluxThm { .. }) {
-                    if s.flow.is_some()
-                        && !matches!(item, LoadItem::FluxThm { value: LoadValue::Real(v), .. } if *v == 0.0)
-                    {
-                        return Err(a.err(
+                Force::Flux { value, .. } if s.hm => {
+                    if s.flow.is_some() && value.constant != Some(0.0) {
+                        return Err(cfg.err(
                             "EXCIT",
                             format!(
-                                "load {}: a non-zero FLUX_THM_REP with cohesive interfaces and coupled flow is not \
-                                 supported yet",
-                                lc.label()
+                                "load {name}: a non-zero FLUX_THM_REP with cohesive interfaces and coupled flow is not \
+                                 supported yet"
                             ),
                         ));
                     }
-                    if !flux_loads.contains(&lc.label()) {
-                        flux_loads.push(lc.label());
+                    if !flux_loads.contains(name) {
+                        flux_loads.push(name.clone());
                     }
-                    continue;
                 }
                 // Kept for later: with coupled flow the HM driver takes the scene, loads and all.
+                _ => {
+                    if unsupported.is_none() {
+                        unsupported = Some(unsupported_load(cfg, s, name));
+                    }
+                }
+            }
+        }
+        for item in &load.conditions {
+            let Condition::Dof { node, component, value } = item else {
                 if unsupported.is_none() {
-                    unsupported = Some(a.err(
-                        "EXCIT",
-                        format!(
-                            "load {}: only DDL_IMPO, PRES_REP with FISSURE and PESANTEUR are supported yet on an X-FEM \
-                             model{}",
-                            lc.label(),
-                            if s.hm { " with cohesive interfaces or with every hydraulic unknown prescribed" } else { "" }
-                        ),
-                    ));
+                    unsupported = Some(unsupported_load(cfg, s, name));
                 }
                 continue;
             };
             let n = *node;
             let Some(std) = xd.std[n] else {
-                return Err(
-                    a.err("EXCIT", format!("load {}: node {} is not in the model", lc.label(), mesh.node_names[n]))
-                );
+                return Err(cfg.err("EXCIT", format!("load {name}: node {} is not in the model", mesh.node_names[n])));
             };
-            let c = component.as_str();
+            let c = *component;
             if let Some((u, q)) = interface_component(c).filter(|&(_, q)| q < ndim) {
-                let v = mult * load_value(value, &mesh.coords[n], t)?;
+                let v = value.at(&mesh.coords[n])?;
                 match blocks[n].as_slice() {
                     [(zi, k)] => cons.impose(xd.packets[s.zones[*zi].crack][*k] + u * ndim + q, v),
                     // A node on no packet: its interface unknowns are inactive (held at zero by X-FEM's own
                     // relations in Code_Aster), and the condition has nothing to act on there.
                     [] => {}
                     _ => {
-                        return Err(a.err(
+                        return Err(cfg.err(
                             "EXCIT",
                             format!(
-                                "load {}: {c} at node {}, which is on the packets of several interfaces: not \
+                                "load {name}: {c} at node {}, which is on the packets of several interfaces: not \
                                  supported yet",
-                                lc.label(),
                                 mesh.node_names[n]
                             ),
                         ))
@@ -196,50 +175,48 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Co
             }
             if is_hydraulic(c) {
                 if !s.hm {
-                    return Err(
-                        a.err("EXCIT", format!("load {}: component {c} does not exist in this model", lc.label()))
-                    );
+                    return Err(cfg.err("EXCIT", format!("load {name}: component {c} does not exist in this model")));
                 }
-                let v = mult * load_value(value, &mesh.coords[n], t)?;
+                let v = value.at(&mesh.coords[n])?;
                 hydraulic.insert((n, c.to_string()), v);
                 continue;
             }
             if let Some(d) = direction(c).filter(|&d| d < ndim) {
-                let v = mult * load_value(value, &mesh.coords[n], t)?;
+                let v = value.at(&mesh.coords[n])?;
                 cons.impose(std + d, v);
                 blocked_dir[d] = true;
                 // A function-valued condition prescribes the trace on every
                 // side of the node (xddlimf): each Heaviside part makes the
                 // trace match the function just across the interface.
-                if load.functional && !xd.sets[n].is_empty() {
-                    let LoadValue::Func(f) = value else { unreachable!("functional load") };
+                if let (true, Some(f)) = (load.functional && !xd.sets[n].is_empty(), value.function) {
                     let same: BTreeSet<usize> = load
-                        .items
+                        .conditions
                         .iter()
                         .filter_map(|it| match it {
-                            LoadItem::Dof { node, component, value: LoadValue::Func(g) }
-                                if component == c && Rc::ptr_eq(g, f) =>
+                            Condition::Dof { node, component, value: g }
+                                if *component == c && g.function == Some(f) =>
                             {
                                 Some(*node)
                             }
                             _ => None,
                         })
                         .collect();
-                    let key = (Rc::as_ptr(f) as usize, c.to_string());
+                    let at = |x: &[f64; 3]| value.at(x).map_err(|e| e.msg);
+                    let key = (f, c.to_string());
                     let jumps = match jump_cache.get(&key) {
                         Some(&j) => j,
                         None => {
-                            let j = function_jumps(mesh, xm, &same, &at_t(f, t))
-                                .map_err(|e| a.err("EXCIT", format!("load {}: {c}: {e}", lc.label())))?;
+                            let j = function_jumps(mesh, xm, &same, &at)
+                                .map_err(|e| cfg.err("EXCIT", format!("load {name}: {c}: {e}")))?;
                             jump_cache.insert(key, j);
                             j
                         }
                     };
-                    let (values, points) = trace_sets(mesh, xm, n, &same, &at_t(f, t), jumps).map_err(|e| {
-                        a.err("EXCIT", format!("load {}: {c} at node {}: {e}", lc.label(), mesh.node_names[n]))
+                    let (values, points) = trace_sets(mesh, xm, n, &same, &at, jumps).map_err(|e| {
+                        cfg.err("EXCIT", format!("load {name}: {c} at node {}: {e}", mesh.node_names[n]))
                     })?;
                     for (j, h) in values {
-                        cons.impose(xd.sets[n][j] + d, mult * h);
+                        cons.impose(xd.sets[n][j] + d, h);
                     }
                     // xddlimf's point relation: the whole field at a point
                     // of the set's region equals the function there.
@@ -253,28 +230,27 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Co
                                 terms.push((xd.sets[i][jj] + d, xm.psi(i, jj, p.region) * p.ff[k]));
                             }
                         }
-                        cons.relation(terms, mult * p.value);
+                        cons.relation(terms, p.value);
                     }
                 }
             } else if let Some((j, d)) = heaviside_component(c).filter(|&(_, d)| d < ndim) {
                 // Acts on the nodes that carry the set.
                 if let Some(&b) = xd.sets[n].get(j) {
-                    cons.impose(b + d, mult * load_value(value, &mesh.coords[n], t)?);
+                    cons.impose(b + d, value.at(&mesh.coords[n])?);
                 }
             } else {
-                return Err(a.err(
-                    "EXCIT",
-                    format!("load {}: DDL_IMPO on {c} is not supported yet on an X-FEM model", lc.label()),
-                ));
+                return Err(
+                    cfg.err("EXCIT", format!("load {name}: DDL_IMPO on {c} is not supported yet on an X-FEM model"))
+                );
             }
         }
     }
     let (mut report, pressure, free_hydraulics) = if let Some(flow) = &s.flow {
-        impose_flow(a, s, flow, &blocks, &hydraulic, &mut cons)?;
+        impose_flow(cfg, s, flow, &blocks, &hydraulic, &mut cons)?;
         let fixed: BTreeSet<usize> = cons.imposed.iter().map(|&(d, _)| d).collect();
-        (flow.report(a, s, &|d| fixed.contains(&d))?, None, None)
+        (flow.report(cfg, s, &|d| fixed.contains(&d))?, None, None)
     } else if s.hm {
-        match hydraulic_report(a, s, &hydraulic)? {
+        match hydraulic_report(cfg, s, &hydraulic)? {
             Ok((r, p)) => (r, p, None),
             Err(what) => (String::new(), None, Some(what)),
         }
@@ -297,9 +273,9 @@ pub fn constraints(a: &Args, model: &ConceptRef, s: &Setup, t: f64) -> Result<Co
 /// over on middle nodes and nodes without the set, as Code_Aster's `afddli`), the fracture unknowns on
 /// the packet of the node's first interface block (PRE_FLU, LAG_FLI, LAG_FLS).
 fn impose_flow(
-    a: &Args,
+    cfg: &Settings,
     s: &Setup,
-    flow: &super::flow::Flow,
+    flow: &super::setup::Flow,
     blocks: &[Vec<(usize, usize)>],
     hydraulic: &BTreeMap<(usize, String), f64>,
     cons: &mut Constraints,
@@ -315,7 +291,7 @@ fn impose_flow(
                     [(zi, k)] => Some(flow.fracture[*zi][*k] + off),
                     [] => None, // on no packet: nothing to act on (as LAGS_* above)
                     _ => {
-                        return Err(a.err(
+                        return Err(cfg.err(
                             "EXCIT",
                             format!(
                                 "{c} at node {}, on the packets of several interfaces: not supported yet",
@@ -328,11 +304,11 @@ fn impose_flow(
             h if h.starts_with('H') && h.ends_with("PRE1") => {
                 let j: usize = h[1..h.len() - 4]
                     .parse()
-                    .map_err(|_| a.err("EXCIT", format!("{h}: not a Heaviside pressure component")))?;
+                    .map_err(|_| cfg.err("EXCIT", format!("{h}: not a Heaviside pressure component")))?;
                 flow.hpre1[n].get(j.wrapping_sub(1)).copied().flatten()
             }
             other => {
-                return Err(a.err(
+                return Err(cfg.err(
                     "EXCIT",
                     format!("DDL_IMPO on {other} (a second interface's fracture unknowns) is not supported yet"),
                 ))
@@ -350,7 +326,7 @@ fn impose_flow(
 /// enrichment sets, p_f/q⁺/q⁻ on the packets, these to zero).
 #[allow(clippy::type_complexity)]
 fn hydraulic_report(
-    a: &Args,
+    cfg: &Settings,
     s: &Setup,
     hydraulic: &BTreeMap<(usize, String), f64>,
 ) -> Result<std::result::Result<(String, Option<PorePressure>), String>> {
@@ -406,7 +382,7 @@ fn hydraulic_report(
         }
     }
     if let Some(((n, c), v)) = hydraulic.iter().find(|((_, c), v)| **v != 0.0 && !bulk(c)) {
-        return Err(a.err(
+        return Err(cfg.err(
             "EXCIT",
             format!(
                 "{c} = {v} at node {}: a non-zero fracture pressure or exchange flux acts on the lips through the flow in the \

@@ -19,43 +19,21 @@
 //! law `ρ a³/(12μ) ∇p_f` is left out. A free p_f (the fracture mass balance with the cubic law) stops the
 //! run by name.
 
-use super::setup::Setup;
-use crate::catalog::args::Args;
-use crate::concepts::ConceptRef;
+use super::setup::{Flow, Setup};
 use crate::diag::{Error, Result};
 use crate::fem::assembly::{Assembler, ElementDofs};
 use crate::hm::element::{element, StepData};
 use crate::hm::law::PointState;
-use crate::stages::core::hm::{hm_problem, HmProblem};
+use crate::stages::core::hm::hm_problem;
+use crate::stages::core::settings::Settings;
 use crate::xfem::discrete::{self, Exchange};
 use std::fmt::Write as _;
 
-/// The flow unknowns and operators of one solve.
-pub struct Flow {
-    pub hp: HmProblem,
-    /// All unknowns: the mechanical ones, the pressures, the fracture unknowns.
-    pub n: usize,
-    /// Per bulk cell of `hp` (in `hp.elements()` order), its element's unknowns in the full numbering.
-    pub dofs: Vec<Vec<usize>>,
-    /// Per node: PRE1, and per enrichment set H<j>PRE1 (vertices only).
-    pub pre1: Vec<Option<usize>>,
-    pub hpre1: Vec<Vec<Option<usize>>>,
-    /// The first pressure unknown and the count of pressures.
-    pub first_pressure: usize,
-    pub npressure: usize,
-    /// Per zone and packet: p_f (q⁺ at +1, q⁻ at +2).
-    pub fracture: Vec<Vec<usize>>,
-    /// Per zone: the hydraulic couplings of its cells with the full unknowns of their pressure columns.
-    pub exchanges: Vec<Vec<(Exchange, Vec<usize>)>>,
-    /// Per zone: ρ₀ of the liquid along the interface (storage in the fracture rows' reactions).
-    pub rho_f: Vec<f64>,
-    pub theta: f64,
-}
-
 impl Flow {
-    pub fn new(a: &Args, model: &ConceptRef, s: &Setup) -> Result<Flow> {
+    pub fn new(cfg: &Settings, s: &Setup) -> Result<Flow> {
+        let model = &cfg.model;
         let (mesh, xm, xd, ndim) = (&*s.mesh, &*s.xm, &s.xd, s.ndim());
-        let hp = hm_problem(model, &s.chmat).map_err(|e| e.at(a.span_of("MODELE")))?;
+        let hp = hm_problem(model, &s.chmat).map_err(|e| e.at(cfg.span_of("MODELE")))?;
         let num = &hp.numbering;
         let per_set = ndim + 1;
         let mut pre1 = vec![None; mesh.nnodes()];
@@ -69,7 +47,7 @@ impl Flow {
                     "node {}: component {} of the HM elements has no unknown in the X-FEM numbering",
                     mesh.node_names[n], num.components[k]
                 ))
-                .at(a.span)
+                .at(cfg.span)
             };
             *slot = if k < ndim {
                 xd.std[n].ok_or_else(missing)? + k
@@ -103,10 +81,10 @@ impl Flow {
         let mut exchanges = Vec::new();
         let mut rho_f = Vec::new();
         for z in &s.zones {
-            let rule = discrete::facet_rule(ndim, z.order).map_err(|e| a.err("CONTACT", e))?;
+            let rule = discrete::facet_rule(ndim, z.order).map_err(|e| cfg.err("CONTACT", e))?;
             let facets = s.facets(z.crack);
             let ex = discrete::exchanges(mesh, xm, z.crack, facets, &rule, &z.packet_of, &z.edges)
-                .map_err(|e| a.err("CONTACT", format!("{}: {e}", xm.crack_names[z.crack])))?;
+                .map_err(|e| cfg.err("CONTACT", format!("{}: {e}", xm.crack_names[z.crack])))?;
             let mut v = Vec::new();
             for e in ex {
                 let nodes = &mesh.cells[e.cell];
@@ -118,7 +96,7 @@ impl Flow {
                         Some(j) => hpre1[n].get(j).copied().flatten(),
                     };
                     cd.push(d.ok_or_else(|| {
-                        a.err(
+                        cfg.err(
                             "CONTACT",
                             format!("node {} of an interface cell carries no pressure", mesh.node_names[n]),
                         )
@@ -127,10 +105,10 @@ impl Flow {
                 v.push((e, cd));
             }
             exchanges.push(v);
-            let c = *z.cells.first().ok_or_else(|| a.err("CONTACT", "a cohesive zone without contact cells"))?;
+            let c = *z.cells.first().ok_or_else(|| cfg.err("CONTACT", "a cohesive zone without contact cells"))?;
             rho_f.push(hp.cells[c].as_ref().map_or(Ok(0.0), |hc| Ok::<f64, Error>(hc.mat.rho_l))?);
         }
-        let theta = a.fact("SCHEMA_THM").and_then(|f| f.real("PARM_THETA")).unwrap_or(1.0);
+        let theta = cfg.theta;
         Ok(Flow { hp, n: next, dofs, pre1, hpre1, first_pressure, npressure, fracture, exchanges, rho_f, theta })
     }
 
@@ -174,7 +152,7 @@ impl Flow {
     #[allow(clippy::too_many_arguments)]
     pub fn add(
         &self,
-        a: &Args,
+        cfg: &Settings,
         s: &Setup,
         x: &[f64],
         x0: &[f64],
@@ -182,22 +160,22 @@ impl Flow {
         dt: f64,
         t: f64,
         r: &mut [f64],
-        asm: &mut Assembler,
+        mut asm: Option<&mut Assembler>,
     ) -> Result<Vec<Vec<PointState>>> {
         let mut states = Vec::with_capacity(prev.len());
         for (((c, cell), d), pv) in self.hp.elements().zip(&self.dofs).zip(prev) {
-            let m = match &cell.pesa_mult {
-                Some(f) => crate::stages::core::eval::eval_at(f, &[0.0; 3], t).map_err(|e| e.at(a.span))?,
-                None => 1.0,
-            };
-            let step = StepData { dt, theta: self.theta, gravity: cell.mat.gravity.map(|g| g * m) };
+            let gravity = self.hp.gravity(cell, t).map_err(|e| e.at(cfg.span))?;
+            let step = StepData { dt, theta: self.theta, gravity };
             let ue: Vec<f64> = d.iter().map(|&i| x[i]).collect();
-            let out = element(&cell.points, &cell.mat, &ue, pv, &step)
-                .map_err(|e| Error::runtime(format!("cell {}: {} (INST={t})", s.mesh.cell_names[c], e.0)).at(a.span))?;
+            let out = element(&cell.points, &cell.mat, &ue, pv, &step).map_err(|e| {
+                Error::runtime(format!("cell {}: {} (INST={t})", s.mesh.cell_names[c], e.0)).at(cfg.span)
+            })?;
             for (i, &di) in d.iter().enumerate() {
                 r[di] += out.fint[i];
             }
-            asm.add_matrix(d, &out.k);
+            if let Some(a) = asm.as_deref_mut() {
+                a.add_matrix(d, &out.k);
+            }
             states.push(out.states);
         }
         let th = self.theta;
@@ -245,7 +223,9 @@ impl Flow {
                         ke[at(k, 3) * nd + at(l, 2)] -= mkl;
                     }
                 }
-                asm.add_matrix(&dofs, &ke);
+                if let Some(a) = asm.as_deref_mut() {
+                    a.add_matrix(&dofs, &ke);
+                }
             }
         }
         Ok(states)
@@ -253,18 +233,18 @@ impl Flow {
 
     /// Stop when a packet's p_f is free (the fracture mass balance is not computed); the run log's
     /// account of the hydraulic unknowns, solved and eliminated.
-    pub fn report(&self, a: &Args, s: &Setup, prescribed: &dyn Fn(usize) -> bool) -> Result<String> {
+    pub fn report(&self, cfg: &Settings, s: &Setup, prescribed: &dyn Fn(usize) -> bool) -> Result<String> {
         let mesh = &*s.mesh;
         for (zi, z) in s.zones.iter().enumerate() {
             for (k, &f) in self.fracture[zi].iter().enumerate() {
                 if !prescribed(f) {
-                    return Err(a.err(
+                    return Err(cfg.err(
                         "EXCIT",
                         format!(
                             "PRE_FLU of {} on packet {:?} is not prescribed: the fracture mass balance (storage ρ_f·a and \
                              the cubic law ρ a³/(12μ) ∇p_f along the interface) is not supported yet",
                             s.xm.crack_names[z.crack],
-                            super::report::names(mesh, &z.packets[k])
+                            super::setup::names(mesh, &z.packets[k])
                         ),
                     ));
                 }

@@ -3,35 +3,34 @@
 //! sub-cells (`xfem::discrete::body_force`), ρ being ELAS RHO, or THM_DIFFU RHO (the mixture's) on a
 //! hydro-mechanical model.
 
-use super::conditions::PorePressure;
 use super::setup::Setup;
-use crate::catalog::args::Args;
-use crate::concepts::model::{LoadItem, LoadValue};
-use crate::concepts::ConceptData;
+use super::state::PorePressure;
 use crate::diag::Result;
-use crate::stages::core::assembly::loads;
-use crate::stages::core::eval::eval_at;
+use crate::fem::physics::{Force, Load};
 use crate::stages::core::problem::mat_param;
+use crate::stages::core::settings::Settings;
 use crate::xfem::discrete;
 
-/// The external force vector at `t` (all unknowns), and whether any load gives one; `pressure`, the pore
-/// pressure the loads prescribe on an HM model, acts through the Biot term ([`biot`]).
-pub fn external(a: &Args, s: &Setup, t: f64, pressure: Option<&PorePressure>) -> Result<Option<Vec<f64>>> {
+/// The external forces of the loads added to `f` (all unknowns); `pressure`, the pore pressure the loads
+/// prescribe on an HM model, acts through the Biot term ([`biot`]).
+pub fn external(
+    cfg: &Settings,
+    s: &Setup,
+    loads: &[Load],
+    pressure: Option<&PorePressure>,
+    f: &mut [f64],
+) -> Result<()> {
     let (mesh, xm, xd, ndim) = (&*s.mesh, &*s.xm, &s.xd, s.ndim());
-    let mut f: Option<Vec<f64>> = None;
     if let Some(p) = pressure {
-        biot(a, s, p, f.get_or_insert_with(|| vec![0.0; xd.n]))?;
+        biot(cfg, s, p, f)?;
     }
-    for (lc, mult) in loads(a, t)? {
-        let data = lc.data();
-        let ConceptData::Load(load) = &*data else { continue };
-        for item in &load.items {
-            if let LoadItem::Gravity { g, direction, cells } = item {
-                let fv = f.get_or_insert_with(|| vec![0.0; xd.n]);
-                gravity(a, s, mult * g, direction, cells.as_deref(), fv)?;
+    for load in loads {
+        for item in &load.forces {
+            if let Force::Gravity { g, direction, cells } = item {
+                gravity(cfg, s, *g, direction, *cells, f)?;
                 continue;
             }
-            let LoadItem::CrackPressure { crack, name, value } = item else { continue };
+            let Force::LipPressure { crack, name, value } = item else { continue };
             // A rule exact for a pressure affine in space on straight facets: the parent's shape
             // functions restricted to a plane inclined to the axes are of degree 3 (HEXA8's xyz) or 4
             // (HEXA20's x²yz, PENTA15), one more with the pressure: FPG7 (degree 5) in 3D; on a line,
@@ -50,14 +49,8 @@ pub fn external(a: &Args, s: &Setup, t: f64, pressure: Option<&PorePressure>) ->
             } else {
                 2
             };
-            let rule = discrete::facet_rule(ndim, order).map_err(|e| a.err("EXCIT", e))?;
-            let p = |x: &[f64; 3]| -> std::result::Result<f64, String> {
-                Ok(mult
-                    * match value {
-                        LoadValue::Real(v) => *v,
-                        LoadValue::Func(g) => eval_at(g, x, t).map_err(|e| e.msg)?,
-                    })
-            };
+            let rule = discrete::facet_rule(ndim, order).map_err(|e| cfg.err("EXCIT", e))?;
+            let p = |x: &[f64; 3]| -> std::result::Result<f64, String> { value.at(x).map_err(|e| e.msg) };
             // Code_Aster loads the cells of the crack's enriched-cell lists (`xtmafi`: MAILFISS.HEAV, …, the
             // cells with a node it enriches), and in each of them the lips of every interface the cell sees
             // (`te0037` loops over the cell's cracks): a branch of a junction is loaded where it crosses
@@ -67,29 +60,34 @@ pub fn external(a: &Args, s: &Setup, t: f64, pressure: Option<&PorePressure>) ->
                 let facets: Vec<discrete::Facet> =
                     s.facets(g).iter().filter(|fc| loaded.contains(&fc.cell)).cloned().collect();
                 let cells = discrete::lip_pressure(mesh, xm, g, &facets, &rule, ndim, &p).map_err(|e| {
-                    a.err(
+                    cfg.err(
                         "EXCIT",
                         format!(
                             "load {}: PRES_REP on the lips of {} ({name}'s cells): {e}",
-                            lc.label(),
-                            xm.crack_names[g]
+                            load.name, xm.crack_names[g]
                         ),
                     )
                 })?;
-                let fv = f.get_or_insert_with(|| vec![0.0; xd.n]);
                 for (c, fe) in cells {
                     for (d, v) in xd.cell_dofs(&mesh.cells[c]).into_iter().zip(fe) {
-                        fv[d] += v;
+                        f[d] += v;
                     }
                 }
             }
         }
     }
-    Ok(f)
+    Ok(())
 }
 
 /// PESANTEUR: ρ g along `direction` on the model's cells (those of `cells` when given).
-fn gravity(a: &Args, s: &Setup, g: f64, direction: &[f64; 3], cells: Option<&[usize]>, f: &mut [f64]) -> Result<()> {
+fn gravity(
+    cfg: &Settings,
+    s: &Setup,
+    g: f64,
+    direction: &[f64; 3],
+    cells: Option<&[usize]>,
+    f: &mut [f64],
+) -> Result<()> {
     let (mesh, xm, xd, ndim) = (&*s.mesh, &*s.xm, &s.xd, s.ndim());
     let (behaviour, what) = if s.hm { ("THM_DIFFU", "THM_DIFFU/RHO") } else { ("ELAS", "ELAS/RHO") };
     for &c in &s.model_cells {
@@ -97,15 +95,15 @@ fn gravity(a: &Args, s: &Setup, g: f64, direction: &[f64; 3], cells: Option<&[us
             continue;
         }
         let name = &mesh.cell_names[c];
-        let m = s.material(a, c)?;
-        let rho = mat_param(&m, behaviour, "RHO", name).map_err(|e| e.at(a.span))?.ok_or_else(|| {
-            a.err("CHAM_MATER", format!("PESANTEUR needs the density {what} of the material of cell {name}"))
+        let m = s.material(cfg, c)?;
+        let rho = mat_param(&m, behaviour, "RHO", name).map_err(|e| e.at(cfg.span))?.ok_or_else(|| {
+            cfg.err("CHAM_MATER", format!("PESANTEUR needs the density {what} of the material of cell {name}"))
         })?;
         let acc = direction.map(|d| rho * g * d);
         let nodes = &mesh.cells[c];
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
         let fe = discrete::body_force(mesh.cell_types[c], &coords, nodes, xm, c, ndim, &acc)
-            .map_err(|e| a.err("EXCIT", format!("PESANTEUR on cell {name}: {e}")))?;
+            .map_err(|e| cfg.err("EXCIT", format!("PESANTEUR on cell {name}: {e}")))?;
         for (d, v) in xd.cell_dofs(nodes).into_iter().zip(fe) {
             f[d] += v;
         }
@@ -116,7 +114,7 @@ fn gravity(a: &Args, s: &Setup, g: f64, direction: &[f64; 3], cells: Option<&[us
 /// A prescribed pore pressure on the skeleton: the stress −b·p of the mixture moved to the right-hand
 /// side on every model cell (`discrete::pore_pressure_force`), b being THM_DIFFU BIOT_COEF. The stress
 /// of the pressure is incremental in Code_Aster; the initial state here has p = 0.
-fn biot(a: &Args, s: &Setup, p: &PorePressure, f: &mut [f64]) -> Result<()> {
+fn biot(cfg: &Settings, s: &Setup, p: &PorePressure, f: &mut [f64]) -> Result<()> {
     let (mesh, xm, xd, ndim) = (&*s.mesh, &*s.xm, &s.xd, s.ndim());
     for &c in &s.model_cells {
         let name = &mesh.cell_names[c];
@@ -126,15 +124,15 @@ fn biot(a: &Args, s: &Setup, p: &PorePressure, f: &mut [f64]) -> Result<()> {
         if nodes[..nv].iter().all(|&n| p.pre1[n] == 0.0 && p.hpre1[n].iter().all(|v| *v == 0.0)) {
             continue;
         }
-        let m = s.material(a, c)?;
-        let b = mat_param(&m, "THM_DIFFU", "BIOT_COEF", name).map_err(|e| e.at(a.span))?.ok_or_else(|| {
-            a.err("CHAM_MATER", format!("cell {name}: a prescribed pore pressure needs THM_DIFFU/BIOT_COEF"))
+        let m = s.material(cfg, c)?;
+        let b = mat_param(&m, "THM_DIFFU", "BIOT_COEF", name).map_err(|e| e.at(cfg.span))?.ok_or_else(|| {
+            cfg.err("CHAM_MATER", format!("cell {name}: a prescribed pore pressure needs THM_DIFFU/BIOT_COEF"))
         })?;
         let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
         let pre1: Vec<f64> = nodes[..nv].iter().map(|&n| p.pre1[n]).collect();
         let hpre1: Vec<Vec<f64>> = nodes[..nv].iter().map(|&n| p.hpre1[n].clone()).collect();
         let fe = discrete::pore_pressure_force(t, &coords, nodes, xm, c, ndim, b, &pre1, &hpre1)
-            .map_err(|e| a.err("EXCIT", format!("pore pressure on cell {name}: {e}")))?;
+            .map_err(|e| cfg.err("EXCIT", format!("pore pressure on cell {name}: {e}")))?;
         for (d, v) in xd.cell_dofs(nodes).into_iter().zip(fe) {
             f[d] += v;
         }

@@ -15,8 +15,8 @@
 
 use super::assemble::{Elements, Law};
 use super::setup::Setup;
-use crate::catalog::args::Args;
 use crate::diag::{Error, Result};
+use crate::stages::core::settings::Settings;
 use crate::xfem::discrete::{bulk_points, real_gradients};
 
 /// One integration point: weight, region, real gradients of the cell's shape functions, and the
@@ -46,7 +46,7 @@ pub struct HydraulicRows {
 
 impl HydraulicRows {
     /// None for a model without hydraulics.
-    pub fn new(a: &Args, s: &Setup, el: &Elements) -> Result<Option<HydraulicRows>> {
+    pub fn new(cfg: &Settings, s: &Setup, el: &Elements) -> Result<Option<HydraulicRows>> {
         if !s.hm {
             return Ok(None);
         }
@@ -54,9 +54,9 @@ impl HydraulicRows {
         let mut cells = Vec::with_capacity(s.model_cells.len());
         for &c in &s.model_cells {
             let name = &mesh.cell_names[c];
-            let bad = |e: String| Error::runtime(format!("cell {name}: {e}")).at(a.span);
-            let m = s.material(a, c)?;
-            let (biot, _) = crate::stages::core::hm::biot_of(&m, name).map_err(|e| e.at(a.span))?;
+            let bad = |e: String| Error::runtime(format!("cell {name}: {e}")).at(cfg.span);
+            let m = s.material(cfg, c)?;
+            let (biot, _) = crate::stages::core::hm::biot_of(&m, name).map_err(|e| e.at(cfg.span))?;
             let t = mesh.cell_types[c];
             let nodes = mesh.cells[c].clone();
             let coords: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
@@ -82,9 +82,9 @@ impl HydraulicRows {
         let mut rho_f = Vec::with_capacity(el.laws.len());
         for l in &el.laws {
             let z = &s.zones[l.zone];
-            let c = *z.cells.first().ok_or_else(|| a.err("CONTACT", "a cohesive zone without contact cells"))?;
-            let m = s.material(a, c)?;
-            let (biot, _) = crate::stages::core::hm::biot_of(&m, &mesh.cell_names[c]).map_err(|e| e.at(a.span))?;
+            let c = *z.cells.first().ok_or_else(|| cfg.err("CONTACT", "a cohesive zone without contact cells"))?;
+            let m = s.material(cfg, c)?;
+            let (biot, _) = crate::stages::core::hm::biot_of(&m, &mesh.cell_names[c]).map_err(|e| e.at(cfg.span))?;
             rho_f.push(biot.rho_l);
         }
         Ok(Some(HydraulicRows { cells, rho_f }))

@@ -26,84 +26,69 @@ mod conditions;
 mod flow;
 mod forces;
 mod hydraulic;
+mod physics;
 mod report;
 mod setup;
 mod state;
-mod step;
 
-use crate::catalog::args::Args;
 use crate::concepts::result::{ResultData, Step};
-use crate::concepts::{ConceptData, ConceptRef};
+use crate::concepts::ConceptData;
 use crate::diag::Result;
+use crate::stages::core::driver::{Driver, StepLog};
+use crate::stages::core::loads::Loads;
+use crate::stages::core::settings::Settings;
 use crate::stages::Ctx;
 use std::time::Instant;
 
 /// STAT_NON_LINE on an X-FEM model: the instants of INCREMENT, the initial
 /// state stored as order 0.
-pub fn stat_non_line_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result<Option<ConceptData>> {
-    crate::stages::core::newton::refuse_unsupported_options_except(a, &["ETAT_INIT"])?;
-    let init = state::source(a, model)?;
-    let times = crate::stages::core::newton::instants_from(a, init.as_ref().map(|i| i.inst))?;
-    solve_xfem(ctx, a, model, times, "STAT_NON_LINE", init)
+pub fn stat_non_line_xfem(ctx: &mut Ctx, cfg: &Settings) -> Result<Option<ConceptData>> {
+    solve_xfem(ctx, cfg, state::source(cfg))
 }
 
 /// MECA_STATIQUE on an X-FEM model (no contact zone: the interfaces are free
 /// surfaces): one linear solve at INST (0 by default), stored as order 1.
-pub fn meca_statique_xfem(ctx: &mut Ctx, a: &Args, model: &ConceptRef) -> Result<Option<ConceptData>> {
-    a.refuse(&["CARA_ELEM", "LIST_INST", "SENSIBILITE", "RESULTAT", "INST_FIN"])?;
-    if let Some(o) = a.text("OPTION") {
-        if o != "SIEF_ELGA" && o != "SANS" {
-            return Err(a.err("OPTION", format!("OPTION='{o}' is not supported yet")));
-        }
-    }
-    let inst = a.reals("INST").first().copied().unwrap_or(0.0);
-    solve_xfem(ctx, a, model, vec![inst, inst], "MECA_STATIQUE", None)
+pub fn meca_statique_xfem(ctx: &mut Ctx, cfg: &Settings) -> Result<Option<ConceptData>> {
+    solve_xfem(ctx, cfg, None)
 }
 
 /// Setup, operators, instants, report: the whole solve of an X-FEM model.
-fn solve_xfem(
-    ctx: &mut Ctx,
-    a: &Args,
-    model: &ConceptRef,
-    times: Vec<f64>,
-    command: &str,
-    init: Option<state::Source>,
-) -> Result<Option<ConceptData>> {
-    let statics = command == "MECA_STATIQUE";
+fn solve_xfem(ctx: &mut Ctx, cfg: &Settings, init: Option<state::Source>) -> Result<Option<ConceptData>> {
+    let (model, times) = (&cfg.model, &cfg.times);
+    let statics = cfg.statics();
     let t_start = Instant::now();
-    let mut s = setup::setup(a, model)?;
+    let mut s = setup::setup(cfg, model)?;
     // The unknowns the kinematic conditions prescribe, at the first instant solved: multiplier components
     // that test only prescribed jumps are removed (`discrete::dead_components`).
     let t_first = times.get(1).or(times.last()).copied().unwrap_or(0.0);
-    let mut first = conditions::constraints(a, model, &s, t_first)?;
+    let loads = Loads::new(cfg);
+    let mut first = loads.with(t_first, |l| conditions::constraints(cfg, &s, l))?;
     if first.free_hydraulics.is_some() && s.zones.is_empty() && !statics && init.is_none() {
-        // Coupled flow without cohesive interfaces: the HM driver, on the enriched elements
+        // Coupled flow without cohesive interfaces: the HM physics, on the enriched elements
         // (`stages::core::hm`), solves the flow with the mechanics.
-        return crate::stages::solve::hm::stat_non_line_hm(ctx, a, model);
+        return crate::stages::solve::hm::stat_non_line_hm(ctx, cfg);
     }
     if first.free_hydraulics.is_some() && !s.zones.is_empty() && first.unsupported.is_none() {
         // Coupled flow with cohesive interfaces: the HM elements and the interface hydraulics join this
-        // driver's unknowns (`flow`), which keeps the mortar law and its multipliers in one place.
+        // physics' unknowns (`flow`), which keeps the mortar law and its multipliers in one place.
         if statics {
-            return Err(a.err("EXCIT", "coupled flow needs STAT_NON_LINE (MECA_STATIQUE solves no flow)"));
+            return Err(cfg.err("EXCIT", "coupled flow needs STAT_NON_LINE (MECA_STATIQUE solves no flow)"));
         }
         if init.is_some() {
-            return Err(a.err(
+            return Err(cfg.err(
                 "ETAT_INIT",
                 "ETAT_INIT with coupled flow in cohesive interfaces is not supported yet (the HM point states are \
                  not read back)",
             ));
         }
-        s.flow = Some(flow::Flow::new(a, model, &s)?);
-        first = conditions::constraints(a, model, &s, t_first)?;
+        s.flow = Some(setup::Flow::new(cfg, &s)?);
+        first = loads.with(t_first, |l| conditions::constraints(cfg, &s, l))?;
     }
-    first.require_prescribed_hydraulics(a)?;
+    first.require_prescribed_hydraulics(cfg)?;
     let cons = first.cons;
     let fixed: std::collections::BTreeSet<usize> = cons.imposed.iter().map(|&(d, _)| d).collect();
-    let map = crate::fem::dofs::DofMap::build(s.nunk(), &cons).map_err(|e| a.err("EXCIT", e.to_string()))?;
-    let el = assemble::elements(a, &s, &fixed, &map)?;
-    // ARCHIVAGE (STAT_NON_LINE): the instants and fields stored.
-    let archive = if statics { None } else { Some(crate::stages::core::newton::Archive::from_args(a, &times)?) };
+    let map = crate::fem::dofs::DofMap::build(s.nunk(), &cons).map_err(|e| cfg.err("EXCIT", e.to_string()))?;
+    let el = assemble::elements(cfg, &s, &fixed, &map)?;
     // The steps a reentrant call keeps, and the order of its first new step.
     let reused: Option<(Vec<Step>, i64)> = if statics {
         None
@@ -113,16 +98,23 @@ fn solve_xfem(
             _ => None,
         })
     };
-    let (x, states) = match &init {
-        Some(src) => state::restore(a, src, &s, &el)?,
-        None => (vec![0.0; s.nunk()], vec![crate::xfem::czm::CzmState::default(); el.laws.len()]),
+    let phys = physics::Xfem::new(cfg, &s, &el)?;
+    let (x, czm) = match &init {
+        Some(src) => {
+            let (x, czm) = state::restore(cfg, src, &s, &el)?;
+            (x, Some(czm))
+        }
+        None => (vec![0.0; s.nunk()], None),
     };
-    let start = step::Start { x, states, store: !statics && reused.is_none(), restart: init.is_some() };
-    let mut run = step::run(a, model, &s, &el, &times, statics, archive.as_ref(), start)?;
-    if let Some(archive) = archive {
-        run.steps = archive.select(std::mem::take(&mut run.steps), reused.is_none());
+    let mut state = phys.initial_state(x.clone(), czm);
+    let mut x = x;
+    let driver = Driver::new(cfg, &phys, s.opts);
+    if init.is_some() {
+        // From ETAT_INIT: the reactions of the initial state are the earlier reference force.
+        driver.remember_reference(t_first, &x, &state)?;
     }
-    let mut steps = std::mem::take(&mut run.steps);
+    let mut log = StepLog::default();
+    let mut steps = driver.run(&mut x, &mut state, !statics && reused.is_none(), &mut log)?;
     if let Some((mut kept, first)) = reused {
         for st in &mut steps {
             st.nume_ordre += first - 1;
@@ -130,9 +122,14 @@ fn solve_xfem(
         kept.append(&mut steps);
         steps = kept;
     }
-    ctx.io.mess(&report::run_log(command, model, &s, &el, &run, init.as_ref(), t_start));
-    let loads = a.facts("EXCIT").iter().filter_map(|o| o.concept("CHARGE")).collect();
-    Ok(Some(ConceptData::Result(ResultData { model: model.clone(), material: Some(s.chmat.clone()), loads, steps })))
+    let first = phys.first.take().unwrap_or_default();
+    ctx.io.mess(&report::run_log(cfg, &s, &el, &log, &first, init.as_ref(), t_start));
+    Ok(Some(ConceptData::Result(ResultData {
+        model: model.clone(),
+        material: Some(s.chmat.clone()),
+        loads: cfg.loads(),
+        steps,
+    })))
 }
 
 /// A reentrant STAT_NON_LINE whose first computed instant is `t1`: the steps of the result it keeps and

@@ -3,12 +3,12 @@
 //! unknowns, and the DEPL field on the mesh nodes.
 
 use super::assemble::Elements;
-use super::setup::Setup;
-use super::step::Run;
+use super::setup::{names, Setup};
 use crate::concepts::result::Field;
-use crate::concepts::ConceptRef;
 use crate::fem::elasticity::Modelisation;
-use crate::mesh::Mesh;
+use crate::stages::core::driver::StepLog;
+use crate::stages::core::settings::Settings;
+use crate::stages::core::solver::solver_log;
 use crate::xfem::czm::CzmState;
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -41,14 +41,15 @@ pub fn zone_state(su: &Setup, el: &Elements, states: &[CzmState], x: &[f64]) -> 
 
 /// The run log of a solve: what was simulated, eliminated, and how.
 pub fn run_log(
-    command: &str,
-    model: &ConceptRef,
+    cfg: &Settings,
     su: &Setup,
     el: &Elements,
-    run: &Run,
+    log: &StepLog,
+    first: &FirstConditions,
     init: Option<&super::state::Source>,
     t_start: Instant,
 ) -> String {
+    let (command, model) = (cfg.command.name(), &cfg.model);
     let mut s = String::new();
     let _ = writeln!(s, "  {command} on X-FEM model {} ({}):", model.label(), su.modelisation);
     let _ = writeln!(
@@ -97,7 +98,7 @@ pub fn run_log(
         }
     }
     if su.hm {
-        s.push_str(&run.hm_report);
+        s.push_str(&first.hm_report);
     }
     if let Some(i) = init {
         let _ = writeln!(
@@ -108,18 +109,18 @@ pub fn run_log(
             crate::text::sci(i.inst, 6, false)
         );
     }
-    if let Some(n) = &su.newton_note {
+    if let Some(n) = &cfg.newton_note {
         let _ = writeln!(s, "{n}");
     }
-    for p in &run.pinned {
+    for p in &first.pinned {
         let _ = writeln!(s, "    null mode : {p}");
     }
-    if !run.vanished_steps.is_empty() {
+    if !log.vanished.is_empty() {
         let _ = writeln!(
             s,
             "    criterion : at steps {:?} the reactions vanished (below 1e-6 of the largest earlier one); \
              RESI_GLOB_RELA was measured against the largest earlier reaction",
-            run.vanished_steps
+            log.vanished
         );
     }
     if su.iter_cont_maxi > 0 {
@@ -140,29 +141,33 @@ pub fn run_log(
         su.xd.n_std,
         su.xd.n_heaviside,
         su.xd.n_interface,
-        run.nfree
+        log.solved
     );
+    let times = &cfg.times;
     let _ = writeln!(
         s,
-        "  {:>4}  {:>14}  {:>5}  {:>14}  {:>14}",
-        "step", "INST", "iters", "RESI_GLOB_RELA", "RESI_GLOB_MAXI"
+        "    steps     : {} instants from {} to {}, {} computed ({} cut), {} Newton iterations in all",
+        times.len() - 1,
+        times[0],
+        times[times.len() - 1],
+        log.steps,
+        log.cuts,
+        log.iterations
     );
-    s.push_str(&run.log);
-    s.push_str(&run.solver);
+    s.push_str(&log.table);
+    if let Some((info, residual, refinements)) = &log.last_solve {
+        s.push_str(&solver_log(&cfg.solveur, info, *residual, *refinements));
+    }
+    let t = &log.solver;
     let _ = writeln!(
         s,
         "    time      : elements {:.3} s, assembly {:.3} s, factorization and solves {:.3} s, total {:.3} s",
         el.time.as_secs_f64(),
-        run.t_asm.as_secs_f64(),
-        run.t_fact.as_secs_f64(),
+        log.assembly,
+        (t.symbolic + t.factorization + t.condition + t.solve).as_secs_f64(),
         t_start.elapsed().as_secs_f64()
     );
     s
-}
-
-/// The names of nodes.
-pub fn names(mesh: &Mesh, nodes: &[usize]) -> Vec<String> {
-    nodes.iter().map(|&n| mesh.node_names[n].clone()).collect()
 }
 
 /// A readable name of an unknown.
@@ -218,7 +223,7 @@ pub fn label(s: &Setup, d: usize) -> String {
 /// SIEF_ELGA of an X-FEM solution: σ = D ε(u) at the bulk points of every model cell, in the order the
 /// solver integrates them (the sub-cell points of a cut cell, sub-cell after sub-cell; the RIGI points
 /// elsewhere), u recomposed from the standard and Heaviside unknowns of the point's region.
-pub fn sief_field(a: &crate::catalog::args::Args, s: &Setup, x: &[f64]) -> crate::diag::Result<Field> {
+pub fn sief_field(cfg: &Settings, s: &Setup, x: &[f64]) -> crate::diag::Result<Field> {
     use crate::xfem::discrete::{bulk_points, real_gradients, BulkPoint};
     let (mesh, xm, xd, md) = (&*s.mesh, &*s.xm, &s.xd, s.md);
     let ndim = xd.ndim;
@@ -226,9 +231,9 @@ pub fn sief_field(a: &crate::catalog::args::Args, s: &Setup, x: &[f64]) -> crate
     let mut cells = vec![None; mesh.ncells()];
     for &c in &s.model_cells {
         let name = &mesh.cell_names[c];
-        let bad = |e: String| crate::diag::Error::runtime(format!("cell {name}: {e}")).at(a.span);
-        let m = s.material(a, c)?;
-        let (law, _) = crate::stages::core::problem::elastic_of(&m, name).map_err(|e| e.at(a.span))?;
+        let bad = |e: String| crate::diag::Error::runtime(format!("cell {name}: {e}")).at(cfg.span);
+        let m = s.material(cfg, c)?;
+        let (law, _) = crate::stages::core::problem::elastic_of(&m, name).map_err(|e| e.at(cfg.span))?;
         let d = law.hooke(md);
         let t = mesh.cell_types[c];
         let nodes = &mesh.cells[c];
@@ -277,4 +282,11 @@ pub fn sief_field(a: &crate::catalog::args::Args, s: &Setup, x: &[f64]) -> crate
     }
     let components = md.sigma_names().iter().map(|n| n.to_string()).collect();
     Ok(Field::Elga { components, cells })
+}
+
+/// What the conditions of the first instant told, for the run log.
+#[derive(Default)]
+pub struct FirstConditions {
+    pub hm_report: String,
+    pub pinned: Vec<String>,
 }

@@ -2,21 +2,21 @@
 //! behaviour, the materials, the cohesive zones of DEFI_CONTACT with their multiplier packets, and the
 //! numbering of the unknowns.
 
-use super::assemble::Zone;
-use crate::catalog::args::Args;
 use crate::concepts::model::{Contact, Material, MaterialField, Modelling, Role};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::Result;
 use crate::fem::elasticity::Modelisation;
 use crate::mesh::Mesh;
 use crate::solve::{Method, SolverOptions};
-use crate::stages::core::newton::Convergence;
+use crate::stages::core::hm::HmProblem;
 use crate::stages::core::problem::mat_param;
-use crate::stages::core::solver::{solveur, Solveur};
+use crate::stages::core::settings::Settings;
 use crate::xfem::czm::CzmParams;
+use crate::xfem::discrete::Exchange;
 use crate::xfem::discrete::{Facet, XDofs};
 use crate::xfem::model::{ContactKind, XfemModel};
 use crate::xfem::mortar;
+use std::collections::{BTreeMap, BTreeSet};
 use std::rc::Rc;
 
 /// The checked data of one X-FEM solve.
@@ -29,19 +29,14 @@ pub struct Setup {
     pub modelisation: Modelling,
     pub md: Modelisation,
     pub hm: bool,
-    pub conv: Convergence,
     pub opts: SolverOptions,
-    /// SOLVEUR as given, for the log.
-    pub solveur: Solveur,
     pub chmat: ConceptRef,
     mats: Vec<Option<ConceptRef>>,
     pub zones: Vec<Zone>,
     pub iter_cont_maxi: i64,
     pub xd: XDofs,
-    /// NEWTON's options when the file sets them, for the log.
-    pub newton_note: Option<String>,
     /// The interface hydraulics, when the scene leaves hydraulic unknowns free (`flow`).
-    pub flow: Option<super::flow::Flow>,
+    pub flow: Option<Flow>,
     /// Per crack, its facets (`discrete::facets`), built on first use.
     facets: Vec<std::cell::OnceCell<Vec<Facet>>>,
 }
@@ -67,33 +62,33 @@ impl Setup {
     }
 
     /// The material of a cell.
-    pub fn material(&self, a: &Args, c: usize) -> Result<Rc<Material>> {
-        material_of(a, &self.mats, &self.chmat, &self.mesh, c)
+    pub fn material(&self, cfg: &Settings, c: usize) -> Result<Rc<Material>> {
+        material_of(cfg, &self.mats, &self.chmat, &self.mesh, c)
     }
 }
 
 fn material_of(
-    a: &Args,
+    cfg: &Settings,
     mats: &[Option<ConceptRef>],
     chmat: &ConceptRef,
     mesh: &Mesh,
     c: usize,
 ) -> Result<Rc<Material>> {
     let mc = mats.get(c).cloned().flatten().ok_or_else(|| {
-        a.err("CHAM_MATER", format!("cell {} has no material in {}", mesh.cell_names[c], chmat.label()))
+        cfg.err("CHAM_MATER", format!("cell {} has no material in {}", mesh.cell_names[c], chmat.label()))
     })?;
     let d = mc.data();
     match &*d {
         ConceptData::Material(m) => Ok(m.clone()),
-        _ => Err(a.err("CHAM_MATER", format!("{} is not a material", mc.label()))),
+        _ => Err(cfg.err("CHAM_MATER", format!("{} is not a material", mc.label()))),
     }
 }
 
-pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
+pub fn setup(cfg: &Settings, model: &ConceptRef) -> Result<Setup> {
     let (mesh, xm, elements) = {
         let m = model.model()?;
         let Some(xm) = m.xfem.clone() else {
-            return Err(a.err("MODELE", format!("{} is not an X-FEM model", model.label())));
+            return Err(cfg.err("MODELE", format!("{} is not an X-FEM model", model.label())));
         };
         (m.current_mesh(), xm, m.elements.clone())
     };
@@ -104,7 +99,7 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
     modelisations.sort();
     modelisations.dedup();
     if modelisations.len() != 1 {
-        return Err(a.err(
+        return Err(cfg.err(
             "MODELE",
             format!("several modelisations in one X-FEM model are not supported yet: {modelisations:?}"),
         ));
@@ -114,28 +109,25 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
         Modelling::DPlan | Modelling::CPlan | Modelling::ThreeD | Modelling::DPlanHm | Modelling::ThreeDHm => {
             (modelisation.mechanics().expect("a mechanical kernel"), modelisation.is_hm())
         }
-        m => return Err(a.err("MODELE", format!("an X-FEM {m} model is not supported yet"))),
+        m => return Err(cfg.err("MODELE", format!("an X-FEM {m} model is not supported yet"))),
     };
-    check_behaviour(a, modelisation, hm)?;
-    let conv = Convergence::from_args(a)?;
-    let solveur = solveur(a)?;
+    check_behaviour(cfg, modelisation, hm)?;
     // The tangent is a symmetric saddle point (multipliers λ, w, μ beside the displacements): LDLᵀ.
-    let mut opts = solveur.opts;
+    let mut opts = cfg.solveur.opts;
     opts.method = Method::Ldlt;
 
-    let chmat = a.req_concept("CHAM_MATER")?;
+    let chmat = cfg.chmat()?;
     let mats: Vec<Option<ConceptRef>> = match &*chmat.data() {
         ConceptData::MaterialField(MaterialField { cells, .. }) => cells.clone(),
-        _ => return Err(a.err("CHAM_MATER", format!("{} is not a material field", chmat.label()))),
+        _ => return Err(cfg.err("CHAM_MATER", format!("{} is not a material field", chmat.label()))),
     };
-    let material = |c: usize| material_of(a, &mats, &chmat, &mesh, c);
-    let (zones, iter_cont_maxi) = zones(a, model, &mesh, &xm, &material)?;
+    let material = |c: usize| material_of(cfg, &mats, &chmat, &mesh, c);
+    let (zones, iter_cont_maxi) = zones(cfg, model, &mesh, &xm, &material)?;
     let mut npk = vec![0; xm.cracks.len()];
     for z in &zones {
         npk[z.crack] = z.packets.len();
     }
     let xd = XDofs::new(&mesh, &model_cells, &xm, md.dim(), &npk);
-    let newton_note = crate::stages::core::newton::newton_note(a);
     let ncracks = xm.cracks.len();
     Ok(Setup {
         mesh,
@@ -144,15 +136,12 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
         modelisation,
         md,
         hm,
-        conv,
         opts,
-        solveur,
         chmat,
         mats,
         zones,
         iter_cont_maxi,
         xd,
-        newton_note,
         flow: None,
         facets: (0..ncracks).map(|_| std::cell::OnceCell::new()).collect(),
     })
@@ -160,55 +149,44 @@ pub fn setup(a: &Args, model: &ConceptRef) -> Result<Setup> {
 
 /// COMPORTEMENT: the elastic part of the kit; the hydraulic laws act on the flow when the scene leaves
 /// hydraulic unknowns free (`flow`), else only on eliminated unknowns.
-fn check_behaviour(a: &Args, modelisation: Modelling, hm: bool) -> Result<()> {
-    if !a.declares("COMPORTEMENT") {
-        return Ok(()); // MECA_STATIQUE: linear elasticity.
-    }
-    for occ in a.facts("COMPORTEMENT") {
-        crate::stages::core::newton::closed_form_behaviour(occ)?;
-        let rel = occ.text("RELATION").unwrap_or("ELAS");
-        match (rel, hm) {
+fn check_behaviour(cfg: &Settings, modelisation: Modelling, hm: bool) -> Result<()> {
+    for b in &cfg.behaviours {
+        match (b.relation.as_str(), hm) {
             ("ELAS", false) => {}
             ("KIT_HM", true) => {
-                let kit = occ.texts("RELATION_KIT");
+                let kit = &b.kit;
                 if kit.first().map(String::as_str) != Some("ELAS") {
-                    return Err(occ.err(
+                    return Err(b.err(
                         "RELATION_KIT",
                         format!("only an ELAS skeleton is supported yet in KIT_HM (got {kit:?})"),
                     ));
                 }
                 for k in &kit[1..] {
                     if !matches!(k.as_str(), "LIQU_SATU" | "HYDR_UTIL") {
-                        return Err(occ.err("RELATION_KIT", format!("'{k}' is not supported yet")));
+                        return Err(b.err("RELATION_KIT", format!("'{k}' is not supported yet")));
                     }
                 }
             }
-            _ => {
-                return Err(occ.err(
+            (rel, _) => {
+                return Err(b.err(
                     "RELATION",
                     format!("RELATION='{rel}' on an X-FEM {modelisation} model is not supported yet"),
                 ))
             }
         }
-        if occ.text("DEFORMATION").is_some_and(|d| d != "PETIT") {
-            return Err(occ.err("DEFORMATION", "only DEFORMATION='PETIT' is supported yet"));
-        }
     }
-    if a.given("SCHEMA_THM") && !hm {
-        return Err(a.err("SCHEMA_THM", format!("SCHEMA_THM needs a hydro-mechanical model ({modelisation} is not)")));
+    if cfg.schema_thm && !hm {
+        return Err(cfg.err("SCHEMA_THM", format!("SCHEMA_THM needs a hydro-mechanical model ({modelisation} is not)")));
     }
     // With every hydraulic unknown eliminated (`conditions`, which stops otherwise) the time scheme of
     // the flow plays no part: the run log says so.
-    if let Some(s) = a.fact("SCHEMA_THM") {
-        s.read_all();
-    }
     Ok(())
 }
 
 /// The cohesive zones of CONTACT (DEFI_CONTACT): per zone its crack, RUPT_FRAG law, facet rule and
 /// multiplier packets (VERSION2), and ITER_CONT_MAXI.
 fn zones(
-    a: &Args,
+    cfg: &Settings,
     model: &ConceptRef,
     mesh: &Mesh,
     xm: &XfemModel,
@@ -216,13 +194,13 @@ fn zones(
 ) -> Result<(Vec<Zone>, i64)> {
     let mut zones: Vec<Zone> = Vec::new();
     let mut iter_cont_maxi = 0;
-    if let Some(cc) = a.declares("CONTACT").then(|| a.concept("CONTACT")).flatten() {
+    if let Some(cc) = &cfg.contact {
         let d = cc.data();
         let ConceptData::Contact(Contact { zones: cz, model: cmodel, iter_cont_maxi: icm }) = &*d else {
-            return Err(a.err("CONTACT", format!("{} is not a contact definition", cc.label())));
+            return Err(cfg.err("CONTACT", format!("{} is not a contact definition", cc.label())));
         };
         if !Rc::ptr_eq(cmodel, model) {
-            return Err(a.err("CONTACT", format!("{} is defined on another model ({})", cc.label(), cmodel.label())));
+            return Err(cfg.err("CONTACT", format!("{} is defined on another model ({})", cc.label(), cmodel.label())));
         }
         iter_cont_maxi = *icm;
         // Contact cells of every crack (xtyele), over the model's cracks.
@@ -233,14 +211,14 @@ fn zones(
             .collect();
         let contact = mortar::contact_cells(mesh, &topo);
         if xm.contact != ContactKind::Mortar {
-            return Err(a.err("CONTACT", "the cohesive zones need MODI_MODELE_XFEM CONTACT='MORTAR'"));
+            return Err(cfg.err("CONTACT", "the cohesive zones need MODI_MODELE_XFEM CONTACT='MORTAR'"));
         }
         for z in cz {
             let g = xm.cracks.iter().position(|k| Rc::ptr_eq(k, &z.crack)).ok_or_else(|| {
-                a.err("CONTACT", format!("FISS_MAIT={} is not a crack of {}", z.crack_name, model.label()))
+                cfg.err("CONTACT", format!("FISS_MAIT={} is not a crack of {}", z.crack_name, model.label()))
             })?;
             if zones.iter().any(|o| o.crack == g) {
-                return Err(a.err("CONTACT", format!("two zones on {}", z.crack_name)));
+                return Err(cfg.err("CONTACT", format!("two zones on {}", z.crack_name)));
             }
             // RUPT_FRAG of the cells the crack crosses (one material).
             let mut params: Option<CzmParams> = None;
@@ -252,15 +230,15 @@ fn zones(
                 let name = &mesh.cell_names[c];
                 let get = |p: &str| -> Result<f64> {
                     mat_param(&m, "RUPT_FRAG", p, name)?.ok_or_else(|| {
-                        a.err("CHAM_MATER", format!("cell {name}: RELATION='CZM_LIN_MIX' needs RUPT_FRAG {p}"))
+                        cfg.err("CHAM_MATER", format!("cell {name}: RELATION='CZM_LIN_MIX' needs RUPT_FRAG {p}"))
                     })
                 };
                 let p = CzmParams::new(get("SIGM_C")?, get("GC")?, get("PENA_LAGR")?)
-                    .map_err(|e| a.err("CHAM_MATER", format!("cell {name}: RUPT_FRAG: {e}")))?;
+                    .map_err(|e| cfg.err("CHAM_MATER", format!("cell {name}: RUPT_FRAG: {e}")))?;
                 match params {
                     None => params = Some(p),
                     Some(q) if q != p => {
-                        return Err(a.err(
+                        return Err(cfg.err(
                             "CHAM_MATER",
                             format!(
                                 "{}: several RUPT_FRAG materials along one interface are not supported yet",
@@ -271,7 +249,7 @@ fn zones(
                     _ => {}
                 }
             }
-            let params = params.ok_or_else(|| a.err("CONTACT", format!("{} crosses no cell", z.crack_name)))?;
+            let params = params.ok_or_else(|| cfg.err("CONTACT", format!("{} crosses no cell", z.crack_name)))?;
             let cells = &contact[g];
             let master = xm.masters[g].map(|(m, c)| (xm.lsn[m].as_slice(), c));
             let edges = mortar::cut_edges(mesh, cells, &xm.lsn[g], master);
@@ -292,4 +270,43 @@ fn zones(
     // between blocks count the cracks before a zone's own.
     zones.sort_by_key(|z| z.crack);
     Ok((zones, iter_cont_maxi))
+}
+
+/// A cohesive zone: its crack, law, facet rule and multiplier packets.
+pub struct Zone {
+    pub crack: usize,
+    pub params: CzmParams,
+    pub order: i64,
+    pub packets: Vec<Vec<usize>>,
+    pub packet_of: BTreeMap<usize, usize>,
+    pub edges: BTreeSet<(usize, usize)>,
+    /// The contact cells of the crack (`MAILFISS.CONT`), which carry its cohesive variables (COHE_ELEM).
+    pub cells: Vec<usize>,
+}
+
+/// The names of nodes.
+pub fn names(mesh: &Mesh, nodes: &[usize]) -> Vec<String> {
+    nodes.iter().map(|&n| mesh.node_names[n].clone()).collect()
+}
+
+/// The flow unknowns and operators of one solve.
+pub struct Flow {
+    pub hp: HmProblem,
+    /// All unknowns: the mechanical ones, the pressures, the fracture unknowns.
+    pub n: usize,
+    /// Per bulk cell of `hp` (in `hp.elements()` order), its element's unknowns in the full numbering.
+    pub dofs: Vec<Vec<usize>>,
+    /// Per node: PRE1, and per enrichment set H<j>PRE1 (vertices only).
+    pub pre1: Vec<Option<usize>>,
+    pub hpre1: Vec<Vec<Option<usize>>>,
+    /// The first pressure unknown and the count of pressures.
+    pub first_pressure: usize,
+    pub npressure: usize,
+    /// Per zone and packet: p_f (q⁺ at +1, q⁻ at +2).
+    pub fracture: Vec<Vec<usize>>,
+    /// Per zone: the hydraulic couplings of its cells with the full unknowns of their pressure columns.
+    pub exchanges: Vec<Vec<(Exchange, Vec<usize>)>>,
+    /// Per zone: ρ₀ of the liquid along the interface (storage in the fracture rows' reactions).
+    pub rho_f: Vec<f64>,
+    pub theta: f64,
 }

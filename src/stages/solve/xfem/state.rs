@@ -15,12 +15,11 @@
 //!   interface's packets at the same node, and so on. CHAM_EXCLU='VARI_ELGA' does not touch it.
 
 use super::assemble::Elements;
-use super::conditions::PorePressure;
 use super::setup::Setup;
-use crate::catalog::args::Args;
 use crate::concepts::result::Field;
 use crate::concepts::ConceptRef;
 use crate::diag::Result;
+use crate::stages::core::settings::Settings;
 use crate::xfem::czm::CzmState;
 use std::collections::BTreeMap;
 
@@ -67,7 +66,12 @@ pub fn node_blocks(s: &Setup) -> Vec<Vec<(usize, usize)>> {
 }
 
 /// DEPL of an X-FEM state on the mesh nodes (see the module's documentation).
-pub fn depl_fields(a: &Args, s: &Setup, x: &[f64], pressure: Option<&PorePressure>) -> Result<BTreeMap<String, Field>> {
+pub fn depl_fields(
+    cfg: &Settings,
+    s: &Setup,
+    x: &[f64],
+    pressure: Option<&PorePressure>,
+) -> Result<BTreeMap<String, Field>> {
     let (mesh, xm, xd, hm) = (&*s.mesh, &*s.xm, &s.xd, s.hm);
     let ndim = xd.ndim;
     let xyz = ["X", "Y", "Z"];
@@ -92,7 +96,7 @@ pub fn depl_fields(a: &Args, s: &Setup, x: &[f64], pressure: Option<&PorePressur
     let mut block_width = 0;
     for b in 0..nblocks {
         let names = interface_components(ndim, hm, b).ok_or_else(|| {
-            a.err("CONTACT", format!("a node on the packets of {} interfaces: at most 3 are supported", b + 1))
+            cfg.err("CONTACT", format!("a node on the packets of {} interfaces: at most 3 are supported", b + 1))
         })?;
         block_width = names.len();
         comps.extend(names);
@@ -198,57 +202,20 @@ pub struct Source {
     pub inst: f64,
 }
 
-/// ETAT_INIT of an X-FEM STAT_NON_LINE: EVOL_NOLI with NUME_ORDRE or INST (CRITERE, PRECISION), by
-/// default the last stored step (`nmdoin`). The initial fields given one by one are not supported yet.
-pub fn source(a: &Args, model: &ConceptRef) -> Result<Option<Source>> {
-    let Some(e) = a.declares("ETAT_INIT").then(|| a.fact("ETAT_INIT")).flatten() else { return Ok(None) };
-    e.refuse(&["DEPL", "SIGM", "VARI", "STRX", "COHE", "NUME_DIDI", "INST_ETAT_INIT"])?;
-    let Some(rc) = e.concept("EVOL_NOLI") else {
-        return Err(e.err("EVOL_NOLI", "an X-FEM STAT_NON_LINE starts from a result: EVOL_NOLI is required"));
-    };
-    let r = rc.result().map_err(|err| e.locate(err, "EVOL_NOLI"))?;
-    if !std::rc::Rc::ptr_eq(&r.model, model) {
-        return Err(e.err(
-            "EVOL_NOLI",
-            format!(
-                "{} was computed on {}, not on {}: an initial state on another model is not supported yet",
-                rc.label(),
-                r.model.label(),
-                model.label()
-            ),
-        ));
-    }
-    let step = if let Some(n) = e.int("NUME_ORDRE") {
-        r.by_order(n).ok_or_else(|| e.err("NUME_ORDRE", format!("{} has no order {n}", rc.label())))?
-    } else if let Some(t) = e.real("INST") {
-        let prec = e.real("PRECISION").unwrap_or(1e-6);
-        let absolute = e.text("CRITERE") == Some("ABSOLU");
-        let close = |x: f64| (x - t).abs() <= if absolute { prec } else { prec * t.abs() };
-        let found: Vec<_> = r.steps.iter().filter(|s| close(s.inst) || s.inst == t).collect();
-        match found.as_slice() {
-            [s] => *s,
-            [] => return Err(e.err("INST", format!("{} has no step at INST={t}", rc.label()))),
-            _ => return Err(e.err("INST", format!("{} has several steps at INST={t}: give NUME_ORDRE", rc.label()))),
-        }
-    } else {
-        r.steps
-            .iter()
-            .max_by_key(|s| s.nume_ordre)
-            .ok_or_else(|| e.err("EVOL_NOLI", format!("{} is empty", rc.label())))?
-    };
-    let (order, inst) = (step.nume_ordre, step.inst);
-    drop(r);
-    Ok(Some(Source { result: rc, order, inst }))
+/// The step ETAT_INIT starts from (EVOL_NOLI, found by the settings).
+pub fn source(cfg: &Settings) -> Option<Source> {
+    let init = cfg.initial.as_ref()?;
+    let (order, inst) = init.step?;
+    Some(Source { result: init.evol_noli.clone()?, order, inst })
 }
 
 /// The unknowns and the cohesive states of the step of `src`: DEPL read back component by component,
 /// COHE_ELEM (a result without it, as one computed without cohesive zones, starts the laws sound).
-pub fn restore(a: &Args, src: &Source, s: &Setup, el: &Elements) -> Result<(Vec<f64>, Vec<CzmState>)> {
-    let e = a.fact("ETAT_INIT").expect("ETAT_INIT given");
+pub fn restore(cfg: &Settings, src: &Source, s: &Setup, el: &Elements) -> Result<(Vec<f64>, Vec<CzmState>)> {
     let r = src.result.result()?;
     let label = src.result.label();
     let step = r.by_order(src.order).expect("the order found by `source`");
-    let bad = |msg: String| e.err("EVOL_NOLI", format!("{label}, order {}: {msg}", src.order));
+    let bad = |msg: String| cfg.err("ETAT_INIT/EVOL_NOLI", format!("{label}, order {}: {msg}", src.order));
     let Some(Field::Node { components, values }) = step.fields.get("DEPL") else {
         return Err(bad("no DEPL field".into()));
     };
@@ -365,4 +332,12 @@ fn is_hydraulic(c: &str) -> bool {
 /// Does a DEPL carry interface unknowns?
 fn has_interface(components: &[String]) -> bool {
     components.iter().any(|c| c == "LAGS_C")
+}
+
+/// A pore pressure prescribed on every hydraulic unknown of an HM model: `pre1[n]` at each vertex `n`
+/// (0 elsewhere), `hpre1[n][j]` the Heaviside part of node `n`'s enrichment set `j` (`H<j+1>PRE1`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PorePressure {
+    pub pre1: Vec<f64>,
+    pub hpre1: Vec<Vec<f64>>,
 }

@@ -1,0 +1,433 @@
+//! The time stepping every solving command shares, over any [`Physics`]: per step, the kinematic
+//! conditions and external forces of EXCIT (`loads`), the reduced system, the prediction and the Newton
+//! corrections until Code_Aster's CONVERGENCE holds, the solve, and the cutting of a step that fails when
+//! DEFI_LIST_INST asks for it.
+//!
+//! The relative criterion is Code_Aster's (`nmresi`): the largest residual of the free equations over
+//! the physics' reference force ([`Physics::reference`]: the external forces of the free equations and
+//! the reactions of the eliminated ones). Eliminated equations carry their reaction.
+
+use super::loads::Loads;
+use super::newton::inf_norm;
+use super::settings::Settings;
+use crate::concepts::result::Step;
+use crate::diag::{Error, Result};
+use crate::fem::assembly::{Assembler, ElementDofs, SparsityPattern};
+use crate::fem::dofs::{Constraints, DofMap};
+use crate::fem::physics::{Failure, Physics, Prediction, Residual, StepInfo};
+use crate::solve::{self, Analysis, SolverOptions};
+use std::cell::{Cell, RefCell};
+
+/// What the steps did, for the run log.
+#[derive(Debug, Default)]
+pub struct StepLog {
+    pub steps: usize,
+    pub cuts: usize,
+    pub iterations: usize,
+    /// The unknowns solved (free) at the last step, and whether each unknown was eliminated.
+    pub solved: usize,
+    pub eliminated: Vec<bool>,
+    /// Per step: INST, Δt, iterations, the absolute residual, every iteration's relative residual.
+    pub table: String,
+    /// Seconds in the element computations and the assembly.
+    pub assembly: f64,
+    /// Seconds in the solver, summed over every factorization.
+    pub solver: solve::Timings,
+    pub factorizations: usize,
+    /// The condition estimate of the first factorization (the only one estimated).
+    pub condition: Option<f64>,
+    /// The last factorization's summary, relative residual and refinement steps.
+    pub last_solve: Option<(solve::FactorInfo, f64, usize)>,
+    /// Steps at which the reactions vanished and the relative criterion used the largest earlier one.
+    pub vanished: Vec<usize>,
+}
+
+/// The time stepping of one computation.
+pub struct Driver<'a, P: Physics> {
+    pub cfg: &'a Settings,
+    pub phys: &'a P,
+    pub loads: Loads<'a>,
+    pub opts: SolverOptions,
+    /// The symbolic analysis of the last factorization, reused while the pattern holds.
+    analysis: RefCell<Option<Analysis>>,
+    /// The largest reference force of the converged steps (the relative criterion's fallback when the
+    /// reactions vanish, for a physics that asks for it).
+    ref_hist: Cell<f64>,
+}
+
+/// What every assembly of a step shares.
+struct Frame {
+    step: StepInfo,
+    pattern: SparsityPattern,
+    fext: Vec<f64>,
+}
+
+/// The reduced tangent and residual at a state, the internal forces and the laws' trial state.
+struct Assembled<S> {
+    k: faer::sparse::SparseColMat<usize, f64>,
+    rhs: Vec<f64>,
+    fint: Vec<f64>,
+    state: S,
+}
+
+impl<'a, P: Physics> Driver<'a, P> {
+    pub fn new(cfg: &'a Settings, phys: &'a P, opts: SolverOptions) -> Self {
+        Driver { cfg, phys, loads: Loads::new(cfg), opts, analysis: RefCell::new(None), ref_hist: Cell::new(0.0) }
+    }
+
+    /// Every instant of the settings from the state `(x, state)` of the first one: the steps stored at the
+    /// instants ARCHIVAGE keeps (every instant without it), the initial state first as order 0 when
+    /// `initial`, numbered from there; CHAM_EXCLU's fields left out of all but the last.
+    pub fn run(&self, x: &mut Vec<f64>, state: &mut P::State, initial: bool, log: &mut StepLog) -> Result<Vec<Step>> {
+        let times = &self.cfg.times;
+        let fields = |x: &[f64], state: &P::State, t: f64, n: usize| -> Result<Step> {
+            let f = self.phys.fields(x, state).map_err(|e| self.cfg.place(e))?;
+            Ok(Step { nume_ordre: n as i64, inst: t, fields: f.into_iter().collect() })
+        };
+        let mut steps = Vec::new();
+        if initial {
+            steps.push(fields(x, state, times[0], 0)?);
+        }
+        for (n, w) in times.windows(2).enumerate() {
+            self.advance(w[0], w[1], x, state, 0, log)?;
+            if self.cfg.archive.as_ref().is_none_or(|a| a.keeps(w[1])) {
+                steps.push(fields(x, state, w[1], n + 1)?);
+            }
+        }
+        Ok(match &self.cfg.archive {
+            Some(a) => a.select(steps, initial),
+            None => steps,
+        })
+    }
+
+    /// Start the relative criterion's memory from a state (ETAT_INIT's reactions are the reference force
+    /// of the earlier computation).
+    pub fn remember_reference(&self, t: f64, x: &[f64], state: &P::State) -> Result<()> {
+        let step = StepInfo { t0: t, t1: t };
+        let cons = self.loads.conditions(self.phys, t)?;
+        let fext = self.loads.forces(self.phys, &step)?;
+        let map = DofMap::build(x.len(), &zero(&cons)).map_err(|e| self.cfg.err("EXCIT", e.to_string()))?;
+        let mut fint = vec![0.0; x.len()];
+        self.phys.assemble(&step, x, state, None, &mut fint).map_err(fatal)?;
+        let free = free_of(&map, x.len());
+        let r = Residual { fext: &fext, fint: &fint, free: &free, x0: x, x };
+        self.ref_hist.set(self.phys.reference(&r));
+        Ok(())
+    }
+
+    /// Advance from `t0` to `t1`; on a failure, cut the step as DEFI_LIST_INST's ECHEC says (`level`
+    /// cuts so far).
+    pub fn advance(
+        &self,
+        t0: f64,
+        t1: f64,
+        x: &mut Vec<f64>,
+        state: &mut P::State,
+        level: usize,
+        log: &mut StepLog,
+    ) -> Result<()> {
+        match self.step(t0, t1, x, state, log) {
+            Ok(()) => Ok(()),
+            Err(Failure::Fatal(e)) => Err(e),
+            Err(Failure::Step(e)) => {
+                let Some(sd) = self.cfg.subdivision else {
+                    return Err(e);
+                };
+                let dt = (t1 - t0) / sd.pas as f64;
+                if level >= sd.niveau || (sd.pas_mini > 0.0 && dt < sd.pas_mini) {
+                    return Err(Error::runtime(format!(
+                        "{} — the step from {t0} to {t1} cannot be cut further (SUBD_NIVEAU = {}, SUBD_PAS_MINI = {})",
+                        e.msg, sd.niveau, sd.pas_mini
+                    ))
+                    .at(e.span.unwrap_or(self.cfg.span)));
+                }
+                log.cuts += 1;
+                log.table.push_str(&format!(
+                    "  step {t0:e} → {t1:e} failed ({}); cut into {} (level {})\n",
+                    e.msg.lines().next().unwrap_or(""),
+                    sd.pas,
+                    level + 1
+                ));
+                for k in 0..sd.pas {
+                    let a = t0 + k as f64 * dt;
+                    let b = if k + 1 == sd.pas { t1 } else { t0 + (k + 1) as f64 * dt };
+                    self.advance(a, b, x, state, level + 1, log)?;
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// Tangent and residual of the state `x` over the step from the laws' state `prev`, reduced by `map`.
+    fn assemble(
+        &self,
+        fr: &Frame,
+        map: &DofMap,
+        x: &[f64],
+        prev: &P::State,
+        log: &mut StepLog,
+    ) -> std::result::Result<Assembled<P::State>, Failure> {
+        let started = std::time::Instant::now();
+        let mut asm = Assembler::new(map, fr.pattern.clone());
+        let mut fint = vec![0.0; x.len()];
+        let state = self.phys.assemble(&fr.step, x, prev, Some(&mut asm), &mut fint).map_err(|f| self.place(f))?;
+        let r: Vec<f64> = fr.fext.iter().zip(&fint).map(|(f, g)| f - g).collect();
+        let all: Vec<usize> = (0..x.len()).collect();
+        asm.add_vector(&all, &r);
+        let (k, rhs) = asm.finish();
+        log.assembly += started.elapsed().as_secs_f64();
+        Ok(Assembled { k, rhs, fint, state })
+    }
+
+    fn place(&self, f: Failure) -> Failure {
+        match f {
+            Failure::Step(e) => Failure::Step(self.cfg.place(e)),
+            Failure::Fatal(e) => Failure::Fatal(self.cfg.place(e)),
+        }
+    }
+
+    /// The relative and absolute residuals of a state (Code_Aster's RESI_GLOB_RELA and RESI_GLOB_MAXI),
+    /// and whether the reactions vanished against the earlier steps.
+    fn residual(
+        &self,
+        map: &DofMap,
+        free: &[bool],
+        fr: &Frame,
+        x0: &[f64],
+        x: &[f64],
+        fint: &[f64],
+    ) -> (f64, f64, f64, bool) {
+        let r: Vec<f64> = fr.fext.iter().zip(fint).map(|(f, g)| f - g).collect();
+        let abs = inf_norm(&map.reduce_vector(&r));
+        let scale = self.phys.reference(&Residual { fext: &fr.fext, fint, free, x0, x });
+        let hist = self.ref_hist.get();
+        let vanished = self.phys.reference_memory() && scale <= 1e-6 * hist;
+        let s = if vanished { hist } else { scale };
+        (if s > 0.0 { abs / s } else { abs }, abs, scale, vanished)
+    }
+
+    /// Solve the reduced system, its rows scaled as the physics asks.
+    fn factor_solve(
+        &self,
+        map: &DofMap,
+        k: &faer::sparse::SparseColMat<usize, f64>,
+        rhs: &[f64],
+        t1: f64,
+        log: &mut StepLog,
+    ) -> std::result::Result<Vec<f64>, Failure> {
+        let phys = self.phys;
+        let row: Vec<f64> = map.free_to_full.iter().map(|&d| phys.row_scale(d)).collect();
+        let (k, rhs) = if row.iter().any(|&s| s != 1.0) {
+            let (cp, ri) = (k.symbolic().col_ptr(), k.symbolic().row_idx());
+            let mut vals = k.val().to_vec();
+            for j in 0..k.ncols() {
+                for q in cp[j]..cp[j + 1] {
+                    vals[q] *= row[ri[q]];
+                }
+            }
+            let b: Vec<f64> = rhs.iter().zip(&row).map(|(v, s)| v * s).collect();
+            (faer::sparse::SparseColMat::new(k.symbolic().to_owned().expect("a valid pattern"), vals), b)
+        } else {
+            (k.clone(), rhs.to_vec())
+        };
+        // A nan or an infinity in the data (E, NU, a load, a coordinate) reaches the system as such: name
+        // it, rather than let the factorization call the system singular.
+        let names = |dofs: &[usize]| -> String {
+            dofs.iter().take(6).map(|&d| phys.label(map.free_to_full[d])).collect::<Vec<_>>().join(", ")
+        };
+        let (col_ptr, values) = (k.col_ptr(), k.val());
+        let bad_k: Vec<usize> =
+            (0..k.ncols()).filter(|&j| values[col_ptr[j]..col_ptr[j + 1]].iter().any(|v| !v.is_finite())).collect();
+        if !bad_k.is_empty() {
+            return Err(Failure::Fatal(self.cfg.err(
+                "CHAM_MATER",
+                format!(
+                    "the stiffness is not finite (nan or infinite) at unknowns {}: check the material (E, NU) and the \
+                     mesh",
+                    names(&bad_k)
+                ),
+            )));
+        }
+        let bad_f: Vec<usize> = (0..rhs.len()).filter(|&d| !rhs[d].is_finite()).collect();
+        if !bad_f.is_empty() {
+            return Err(Failure::Fatal(self.cfg.err(
+                "EXCIT",
+                format!(
+                    "the loads are not finite (nan or infinite) at unknowns {}: check the values of the loads",
+                    names(&bad_f)
+                ),
+            )));
+        }
+        // The condition number is estimated on the first factorization only: it costs about ten solves,
+        // as much as the factorization itself on large 2D systems, and the steps that follow change the
+        // tangent little (NPREC still checks every factorization's pivots).
+        let mut opts = SolverOptions { condition: self.opts.condition && log.factorizations == 0, ..self.opts };
+        if let Some(m) = phys.solver_method(k.nrows()) {
+            opts.method = m;
+        }
+        let sol = solve::solve_with(k.as_ref(), &rhs, &opts, &mut self.analysis.borrow_mut()).map_err(|e| {
+            let singular = matches!(e, solve::SolveError::Singular { .. });
+            let msg = super::solver::solve_error(e, &self.opts, &|d| phys.label(map.free_to_full[d]));
+            if phys.linear() && singular {
+                // A linear system that cannot be solved: the loads leave a motion free.
+                Failure::Fatal(self.cfg.err("EXCIT", msg))
+            } else {
+                Failure::Step(self.cfg.err("SOLVEUR", format!("the tangent matrix at INST={t1}: {msg}")))
+            }
+        })?;
+        let (t, s) = (&mut log.solver, &sol.timings);
+        t.symbolic += s.symbolic;
+        t.factorization += s.factorization;
+        t.condition += s.condition;
+        t.solve += s.solve;
+        if log.factorizations == 0 {
+            log.condition = sol.info.condition;
+        }
+        log.factorizations += 1;
+        let info = solve::FactorInfo { condition: log.condition, ..sol.info };
+        log.last_solve = Some((info, sol.residual, sol.refinements));
+        if sol.x.iter().any(|v| !v.is_finite()) {
+            return Err(Failure::Step(
+                Error::runtime("the Newton correction is not finite (singular system)").at(self.cfg.span),
+            ));
+        }
+        Ok(sol.x)
+    }
+
+    /// One step [t0, t1]: the conditions and forces of the loads, the prediction, then Newton corrections.
+    fn step(
+        &self,
+        t0: f64,
+        t1: f64,
+        x: &mut Vec<f64>,
+        state: &mut P::State,
+        log: &mut StepLog,
+    ) -> std::result::Result<(), Failure> {
+        let n = self.phys.unknowns();
+        let step = StepInfo { t0, t1 };
+        let cons = self.loads.conditions(self.phys, t1)?;
+        let fext = self.loads.forces(self.phys, &step)?;
+        // The increments the conditions prescribe from the current state, then none.
+        let incr = increments(&cons, x);
+        let map = DofMap::build(n, &zero(&incr))
+            .map_err(|e| self.cfg.err("EXCIT", format!("incompatible kinematic conditions: {e}")))?;
+        let free = free_of(&map, n);
+        log.solved = map.nfree;
+        log.eliminated = free.iter().map(|f| !f).collect();
+        let elems: ElementDofs = self.phys.element_dofs();
+        let pattern = SparsityPattern::build(&map, &elems);
+        let fr = Frame { step, pattern, fext };
+        let x0 = x.clone();
+        let mut unew = match self.phys.prediction() {
+            Prediction::Tangent => {
+                // The tangent and internal forces of the start state, the prescribed increments on the
+                // right-hand side.
+                let map_pred = DofMap::build(n, &incr)
+                    .map_err(|e| self.cfg.err("EXCIT", format!("incompatible kinematic conditions: {e}")))?;
+                let pred = self.assemble(&fr, &map_pred, x, state, log)?;
+                let dx = self.factor_solve(&map_pred, &pred.k, &pred.rhs, t1, log)?;
+                x.iter().zip(map_pred.expand(&dx)).map(|(a, b)| a + b).collect()
+            }
+            Prediction::Imposed => {
+                let map_values = DofMap::build(n, &cons)
+                    .map_err(|e| self.cfg.err("EXCIT", format!("incompatible kinematic conditions: {e}")))?;
+                let kept: Vec<f64> = map_values.free_to_full.iter().map(|&d| x[d]).collect();
+                map_values.expand(&kept)
+            }
+        };
+        // Corrections made (the prediction's solve counts as the first for the test).
+        let predicted = self.phys.prediction() == Prediction::Tangent;
+        let mut iters = 0;
+        let mut history = Vec::new();
+        loop {
+            let now = self.assemble(&fr, &map, &unew, state, log)?;
+            let (rel, abs, reference, vanished) = self.residual(&map, &free, &fr, &x0, &unew, &now.fint);
+            history.push(rel);
+            let solved = predicted || iters > 0;
+            let done = if self.phys.linear() {
+                solved
+            } else {
+                solved
+                    && self.cfg.conv.resi_rela.map(|tol| rel <= tol).unwrap_or(true)
+                    && self.cfg.conv.resi_maxi.map(|tol| abs <= tol).unwrap_or(true)
+            };
+            if done {
+                *x = unew;
+                *state = now.state;
+                log.steps += 1;
+                log.iterations += iters;
+                if !vanished {
+                    self.ref_hist.set(self.ref_hist.get().max(reference));
+                } else {
+                    log.vanished.push(log.steps);
+                }
+                // Every iteration's relative residual (with a prediction, its own first).
+                let hist: Vec<String> = history.iter().map(|r| crate::text::sci(*r, 3, false)).collect();
+                log.table.push_str(&format!(
+                    "  INST {:>14}  Δt {:>11}  iterations {:>2}  RESI_GLOB_MAXI {:>10}  RESI_GLOB_RELA {}\n",
+                    crate::text::sci(t1, 6, false),
+                    crate::text::sci(t1 - t0, 3, false),
+                    iters,
+                    crate::text::sci(abs, 3, false),
+                    hist.join(" → "),
+                ));
+                log.table.push_str(&self.phys.step_report(x, state));
+                return Ok(());
+            }
+            if iters >= self.cfg.conv.iter_max {
+                return Err(Failure::Step(self.cfg.conv.not_converged(t1, rel, abs)));
+            }
+            crate::diag::check_deadline()
+                .map_err(|mut e| {
+                    e.msg = format!("{} during Newton iteration {} at INST={t1}", e.msg, iters + 1);
+                    e
+                })
+                .map_err(Failure::Fatal)?;
+            let dx = self.factor_solve(&map, &now.k, &now.rhs, t1, log)?;
+            for (ui, di) in unew.iter_mut().zip(map.expand(&dx)) {
+                *ui += di;
+            }
+            iters += 1;
+        }
+    }
+}
+
+fn fatal(f: Failure) -> Error {
+    match f {
+        Failure::Step(e) | Failure::Fatal(e) => e,
+    }
+}
+
+/// Whether each unknown is free under `map`.
+fn free_of(map: &DofMap, n: usize) -> Vec<bool> {
+    let mut free = vec![false; n];
+    for &d in &map.free_to_full {
+        free[d] = true;
+    }
+    free
+}
+
+/// The conditions as increments from the state `u`: `Σ c u = b` becomes `Σ c δu = b − Σ c u`.
+fn increments(cons: &Constraints, u: &[f64]) -> Constraints {
+    let mut out = Constraints::new();
+    for &(d, v) in &cons.imposed {
+        out.impose(d, v - u[d]);
+    }
+    for r in &cons.relations {
+        let now: f64 = r.terms.iter().map(|&(d, c)| c * u[d]).sum();
+        out.relation(r.terms.clone(), r.rhs - now);
+    }
+    out
+}
+
+/// The same conditions with no increment.
+fn zero(cons: &Constraints) -> Constraints {
+    let mut out = Constraints::new();
+    for &(d, _) in &cons.imposed {
+        out.impose(d, 0.0);
+    }
+    for r in &cons.relations {
+        out.relation(r.terms.clone(), 0.0);
+    }
+    out
+}

@@ -1,0 +1,422 @@
+//! What the solving commands share, read once: MODELE, CHAM_MATER, EXCIT, INCREMENT (or INST), CONVERGENCE,
+//! NEWTON, SOLVEUR, ARCHIVAGE, ETAT_INIT, COMPORTEMENT, SCHEMA_THM, CONTACT and OPTION become typed
+//! [`Settings`], and the physics that solves the command is chosen here ([`PhysicsKind`], from the model),
+//! which decides what of these keywords it takes: a keyword the physics does not implement stops the run
+//! by name here, so that nothing below this module looks at the command's keywords again. A physics and the
+//! core's driver read the settings and locate their errors at a keyword through [`Settings::err`].
+
+use super::newton::{Archive, Convergence};
+use super::solver::{solveur, Solveur};
+use crate::catalog::args::Args;
+use crate::concepts::model::Load;
+use crate::concepts::{ConceptData, ConceptRef, Subdivision};
+use crate::diag::Span;
+use crate::diag::{Error, Result};
+use std::collections::BTreeMap;
+use std::rc::Rc;
+
+/// The solving commands on the shared core.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Command {
+    MecaStatique,
+    StatNonLine,
+}
+
+impl Command {
+    pub fn name(self) -> &'static str {
+        match self {
+            Command::MecaStatique => "MECA_STATIQUE",
+            Command::StatNonLine => "STAT_NON_LINE",
+        }
+    }
+}
+
+/// The physics a solving command runs, chosen from its model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PhysicsKind {
+    /// Linear elasticity on 3D, D_PLAN, C_PLAN and AXIS models.
+    Elastic,
+    /// Saturated hydro-mechanics (KIT_HM) on the `*_HM*` modelisations.
+    Hm,
+    /// A model enriched by MODI_MODELE_XFEM (mechanics, or HM with its hydraulics), with or without
+    /// cohesive interfaces.
+    Xfem,
+}
+
+/// A load of EXCIT: the load, its multiplier function and where it was given.
+#[derive(Debug, Clone)]
+pub struct Excit {
+    pub load: ConceptRef,
+    pub fonc_mult: Option<ConceptRef>,
+    pub span: Span,
+    /// Where FONC_MULT was given (the occurrence when absent).
+    pub fonc_mult_span: Span,
+}
+
+/// One occurrence of COMPORTEMENT.
+#[derive(Debug, Clone)]
+pub struct Behaviour {
+    pub relation: String,
+    pub kit: Vec<String>,
+    pub deformation: Option<String>,
+    /// Where RELATION and RELATION_KIT were given.
+    relation_span: Span,
+    kit_span: Span,
+}
+
+impl Behaviour {
+    /// An error located at a keyword of this occurrence (`RELATION`, `RELATION_KIT`), worded as
+    /// `Args::err` words it.
+    pub fn err(&self, kw: &str, msg: impl Into<String>) -> Error {
+        let span = if kw == "RELATION_KIT" { self.kit_span } else { self.relation_span };
+        Error::runtime(format!("COMPORTEMENT/{kw}: {}", msg.into())).at(span)
+    }
+}
+
+/// ETAT_INIT: a stored step of a result (EVOL_NOLI, by NUME_ORDRE or INST) or fields (DEPL, SIGM, VARI).
+#[derive(Debug, Clone, Default)]
+pub struct InitialState {
+    pub evol_noli: Option<ConceptRef>,
+    pub nume_ordre: Option<i64>,
+    pub inst: Option<f64>,
+    pub precision: f64,
+    pub absolute: bool,
+    pub depl: Option<ConceptRef>,
+    pub sigm: Option<ConceptRef>,
+    pub vari: Option<ConceptRef>,
+    /// The order and instant of EVOL_NOLI's step.
+    pub step: Option<(i64, f64)>,
+}
+
+/// What a physics takes of the shared keywords; anything else the user gives stops the run by name.
+struct Takes {
+    /// Top-level keywords of STAT_NON_LINE it implements beyond the ones every physics takes.
+    keywords: &'static [&'static str],
+    /// The keywords of ETAT_INIT it reads.
+    etat_init: &'static [&'static str],
+}
+
+/// STAT_NON_LINE keywords no physics implements yet.
+const NOT_YET: &[&str] = &[
+    "SOUS_STRUC",
+    "RECH_LINEAIRE",
+    "PILOTAGE",
+    "OBSERVATION",
+    "SUIVI_DDL",
+    "CRIT_QUALITE",
+    "ENERGIE",
+    "CRIT_STAB",
+    "RESULTAT",
+];
+
+impl PhysicsKind {
+    fn takes(self) -> Takes {
+        match self {
+            PhysicsKind::Elastic => Takes { keywords: &["ARCHIVAGE"], etat_init: &[] },
+            PhysicsKind::Hm => Takes {
+                keywords: &["ETAT_INIT", "ARCHIVAGE", "SCHEMA_THM"],
+                etat_init: &["DEPL", "SIGM", "VARI", "CRITERE", "PRECISION"],
+            },
+            PhysicsKind::Xfem => Takes {
+                keywords: &["ETAT_INIT", "ARCHIVAGE", "SCHEMA_THM", "CONTACT"],
+                etat_init: &["EVOL_NOLI", "NUME_ORDRE", "INST", "CRITERE", "PRECISION"],
+            },
+        }
+    }
+}
+
+/// The typed keywords of one solving command.
+pub struct Settings {
+    pub command: Command,
+    pub physics: PhysicsKind,
+    /// The command's own location.
+    pub span: Span,
+    /// Where each keyword was given, by path (`EXCIT`, `ETAT_INIT/EVOL_NOLI`, ...).
+    sites: BTreeMap<String, Span>,
+    pub model: ConceptRef,
+    pub chmat: Option<ConceptRef>,
+    pub excit: Vec<Excit>,
+    /// The instants, the initial one first (MECA_STATIQUE: INST twice).
+    pub times: Vec<f64>,
+    /// DEFI_LIST_INST's cutting of a failed step.
+    pub subdivision: Option<Subdivision>,
+    pub conv: Convergence,
+    /// NEWTON's options when the file sets them, for the log.
+    pub newton_note: Option<String>,
+    pub solveur: Solveur,
+    /// ARCHIVAGE (STAT_NON_LINE).
+    pub archive: Option<Archive>,
+    pub initial: Option<InitialState>,
+    pub behaviours: Vec<Behaviour>,
+    /// SCHEMA_THM's PARM_THETA (1 when absent).
+    pub theta: f64,
+    pub schema_thm: bool,
+    pub contact: Option<ConceptRef>,
+    /// MECA_STATIQUE OPTION: SIEF_ELGA is computed unless 'SANS'.
+    pub sief: bool,
+}
+
+impl Settings {
+    /// Read a solving command's keywords: the model first (it chooses the physics), then every shared
+    /// keyword, checked against what that physics takes.
+    pub fn read(a: &Args, command: Command) -> Result<Settings> {
+        let mut sites = BTreeMap::new();
+        let model = a.req_concept("MODELE")?;
+        sites.insert("MODELE".to_string(), a.span_of("MODELE"));
+        let physics = {
+            let m = model.model()?;
+            if m.xfem.is_some() {
+                PhysicsKind::Xfem
+            } else if m.elements.iter().flatten().any(|e| e.modelisation.is_hm()) {
+                PhysicsKind::Hm
+            } else {
+                PhysicsKind::Elastic
+            }
+        };
+        let takes = physics.takes();
+        let statics = command == Command::MecaStatique;
+        if statics {
+            a.refuse(&["CARA_ELEM", "LIST_INST", "SENSIBILITE", "RESULTAT", "INST_FIN"])?;
+        } else {
+            a.refuse(NOT_YET)?;
+            let refused: Vec<&str> =
+                ["ETAT_INIT", "SCHEMA_THM", "CONTACT"].into_iter().filter(|k| !takes.keywords.contains(k)).collect();
+            a.refuse(&refused)?;
+            if a.text("METHODE").is_some_and(|m| m != "NEWTON") {
+                return Err(a.err("METHODE", "only METHODE='NEWTON' is supported yet"));
+            }
+        }
+        let chmat = a.concept("CHAM_MATER");
+        for kw in ["CHAM_MATER", "EXCIT", "INCREMENT", "CONVERGENCE", "SOLVEUR", "ARCHIVAGE", "ETAT_INIT", "CONTACT"] {
+            if a.declares(kw) && a.given(kw) {
+                sites.insert(kw.to_string(), a.span_of(kw));
+            }
+        }
+        let mut excit = Vec::new();
+        for occ in a.facts("EXCIT") {
+            if occ.given("TYPE_CHARGE") && occ.text("TYPE_CHARGE") != Some("FIXE_CSTE") {
+                return Err(occ.err("TYPE_CHARGE", "not supported yet"));
+            }
+            let load = occ.req_concept("CHARGE")?;
+            {
+                let data = load.data();
+                let ConceptData::Load(Load { model: lmodel, .. }) = &*data else {
+                    return Err(a.err("EXCIT", format!("{} is not a mechanical load", load.label())));
+                };
+                if !Rc::ptr_eq(lmodel, &model) {
+                    return Err(a.err(
+                        "EXCIT",
+                        format!("load {} is defined on another model ({})", load.label(), lmodel.label()),
+                    ));
+                }
+            }
+            let fonc_mult = occ.concept("FONC_MULT");
+            excit.push(Excit { load, fonc_mult, span: occ.span, fonc_mult_span: occ.span_of("FONC_MULT") });
+        }
+        let initial = if a.declares("ETAT_INIT") { initial_state(a, &takes, &model, &mut sites)? } else { None };
+        let behaviours = if a.declares("COMPORTEMENT") { behaviours(a)? } else { Vec::new() };
+        let (theta, schema_thm) = match a.declares("SCHEMA_THM").then(|| a.fact("SCHEMA_THM")).flatten() {
+            Some(s) => {
+                // PARM_ALPHA weighs the thermal terms of other laws; saturated HM without temperature has none.
+                let _ = s.real("PARM_ALPHA");
+                (s.real("PARM_THETA").unwrap_or(1.0), a.given("SCHEMA_THM"))
+            }
+            None => (1.0, false),
+        };
+        let contact = a.declares("CONTACT").then(|| a.concept("CONTACT")).flatten();
+        let sief = if statics {
+            match a.text("OPTION") {
+                None | Some("SIEF_ELGA") => true,
+                Some("SANS") => false,
+                Some(o) => return Err(a.err("OPTION", format!("OPTION='{o}' is not supported yet"))),
+            }
+        } else {
+            true
+        };
+        let conv = if statics { Convergence::default() } else { Convergence::from_args(a)? };
+        let newton_note = if statics { None } else { super::newton::newton_note(a) };
+        let solveur = solveur(a)?;
+        let (times, subdivision) = if statics {
+            let inst = a.reals("INST").first().copied().unwrap_or(0.0);
+            (vec![inst, inst], None)
+        } else {
+            // ETAT_INIT's instant (EVOL_NOLI) starts the computation when INCREMENT does not say where.
+            let init_inst = initial.as_ref().and_then(|i| i.step).map(|(_, t)| t);
+            (super::newton::instants_from(a, init_inst)?, super::newton::subdivision(a))
+        };
+        let archive = if statics { None } else { Some(Archive::from_args(a, &times)?) };
+        Ok(Settings {
+            command,
+            physics,
+            span: a.span,
+            sites,
+            model,
+            chmat,
+            excit,
+            times,
+            subdivision,
+            conv,
+            newton_note,
+            solveur,
+            archive,
+            initial,
+            behaviours,
+            theta,
+            schema_thm,
+            contact,
+            sief,
+        })
+    }
+
+    /// A runtime error located at keyword `kw` (a path as `ETAT_INIT/EVOL_NOLI`), worded as
+    /// `Args::err` words it.
+    pub fn err(&self, kw: &str, msg: impl Into<String>) -> Error {
+        Error::runtime(format!("{kw}: {}", msg.into())).at(self.span_of(kw))
+    }
+
+    /// Where keyword `kw` was given (the command when it was not).
+    pub fn span_of(&self, kw: &str) -> Span {
+        self.sites.get(kw).copied().unwrap_or(self.span)
+    }
+
+    /// An error of a library located: at the keyword it names (`Error::at_keyword`, worded `"KW: msg"`), or
+    /// at the command.
+    pub fn place(&self, e: Error) -> Error {
+        match (e.span, e.keyword) {
+            (None, Some(kw)) => self.locate(Error { keyword: None, ..e }, kw),
+            (None, None) => e.at(self.span),
+            _ => e,
+        }
+    }
+
+    /// The error `e` located at keyword `kw` when it has no location, its message and kind kept.
+    pub fn locate(&self, e: Error, kw: &str) -> Error {
+        if e.span.is_some() {
+            return e;
+        }
+        let mut out = self.err(kw, e.msg.clone());
+        out.kind = e.kind;
+        out
+    }
+
+    /// The loads of EXCIT, the results keep them.
+    pub fn loads(&self) -> Vec<ConceptRef> {
+        self.excit.iter().map(|e| e.load.clone()).collect()
+    }
+
+    /// The material field, required by every physics.
+    pub fn chmat(&self) -> Result<ConceptRef> {
+        self.chmat.clone().ok_or_else(|| self.err("CHAM_MATER", "a material field is required"))
+    }
+
+    pub fn statics(&self) -> bool {
+        self.command == Command::MecaStatique
+    }
+}
+
+/// ETAT_INIT's keywords: those the physics takes; any other given stops the run by name.
+fn initial_state(
+    a: &Args,
+    takes: &Takes,
+    model: &ConceptRef,
+    sites: &mut BTreeMap<String, Span>,
+) -> Result<Option<InitialState>> {
+    let Some(e) = a.fact("ETAT_INIT") else { return Ok(None) };
+    for i in e.items.iter().filter(|i| !i.defaulted) {
+        sites.insert(format!("ETAT_INIT/{}", i.name), i.span);
+    }
+    let others: Vec<&str> = e
+        .items
+        .iter()
+        .filter(|i| !i.defaulted && !takes.etat_init.contains(&i.name.as_str()))
+        .map(|i| i.name.as_str())
+        .collect();
+    e.refuse(&others)?;
+    let mut s = InitialState { precision: 1e-6, ..Default::default() };
+    for k in takes.etat_init {
+        match *k {
+            "EVOL_NOLI" => s.evol_noli = e.concept("EVOL_NOLI"),
+            "NUME_ORDRE" => s.nume_ordre = e.int("NUME_ORDRE"),
+            "INST" => s.inst = e.real("INST"),
+            "PRECISION" => s.precision = e.real("PRECISION").unwrap_or(1e-6),
+            "CRITERE" => s.absolute = e.text("CRITERE") == Some("ABSOLU"),
+            "DEPL" => s.depl = e.concept("DEPL"),
+            "SIGM" => s.sigm = e.concept("SIGM"),
+            "VARI" => s.vari = e.concept("VARI"),
+            _ => unreachable!("ETAT_INIT keywords of a physics"),
+        }
+    }
+    // CRITERE and PRECISION only qualify INST; with fields alone they have nothing to select.
+    for k in ["CRITERE", "PRECISION"] {
+        if e.declares(k) {
+            e.has(k);
+        }
+    }
+    if takes.etat_init.contains(&"EVOL_NOLI") {
+        let Some(rc) = s.evol_noli.clone() else {
+            return Err(e.err("EVOL_NOLI", "an X-FEM STAT_NON_LINE starts from a result: EVOL_NOLI is required"));
+        };
+        s.step = Some(initial_step(e, &rc, &s, model)?);
+    }
+    Ok(Some(s))
+}
+
+/// The order and instant of ETAT_INIT's step of `rc` (NUME_ORDRE, INST within PRECISION, else the last),
+/// a result of the same model.
+fn initial_step(e: &Args, rc: &ConceptRef, s: &InitialState, model: &ConceptRef) -> Result<(i64, f64)> {
+    let r = rc.result().map_err(|err| e.locate(err, "EVOL_NOLI"))?;
+    if !Rc::ptr_eq(&r.model, model) {
+        return Err(e.err(
+            "EVOL_NOLI",
+            format!(
+                "{} was computed on {}, not on {}: an initial state on another model is not supported yet",
+                rc.label(),
+                r.model.label(),
+                model.label()
+            ),
+        ));
+    }
+    let step = if let Some(n) = s.nume_ordre {
+        r.by_order(n).ok_or_else(|| e.err("NUME_ORDRE", format!("{} has no order {n}", rc.label())))?
+    } else if let Some(t) = s.inst {
+        let close = |x: f64| (x - t).abs() <= if s.absolute { s.precision } else { s.precision * t.abs() };
+        let found: Vec<_> = r.steps.iter().filter(|st| close(st.inst) || st.inst == t).collect();
+        match found.as_slice() {
+            [st] => *st,
+            [] => return Err(e.err("INST", format!("{} has no step at INST={t}", rc.label()))),
+            _ => return Err(e.err("INST", format!("{} has several steps at INST={t}: give NUME_ORDRE", rc.label()))),
+        }
+    } else {
+        r.steps
+            .iter()
+            .max_by_key(|st| st.nume_ordre)
+            .ok_or_else(|| e.err("EVOL_NOLI", format!("{} is empty", rc.label())))?
+    };
+    Ok((step.nume_ordre, step.inst))
+}
+
+/// COMPORTEMENT, typed; the controls of the local integration are read here: the laws we compute
+/// integrate in closed form, so they have no effect. COMPORTEMENT on part of the model is refused.
+fn behaviours(a: &Args) -> Result<Vec<Behaviour>> {
+    let mut out = Vec::new();
+    for occ in a.facts("COMPORTEMENT") {
+        occ.refuse(&["GROUP_MA", "MAILLE"])?;
+        for k in ["ITER_INTE_MAXI", "ITER_INTE_PAS", "RESI_INTE_RELA", "RESI_INTE", "ALGO_INTE"] {
+            if occ.declares(k) {
+                occ.has(k);
+            }
+        }
+        let deformation = occ.text("DEFORMATION").map(str::to_string);
+        if deformation.as_deref().is_some_and(|d| d != "PETIT") {
+            return Err(occ.err("DEFORMATION", "only DEFORMATION='PETIT' is supported yet"));
+        }
+        out.push(Behaviour {
+            relation: occ.text("RELATION").unwrap_or("ELAS").to_string(),
+            kit: occ.texts("RELATION_KIT"),
+            deformation,
+            relation_span: occ.span_of("RELATION"),
+            kit_span: occ.span_of("RELATION_KIT"),
+        });
+    }
+    Ok(out)
+}
