@@ -210,26 +210,28 @@ impl<'a, P: Physics> Driver<'a, P> {
     fn factor_solve(
         &self,
         map: &DofMap,
-        k: &faer::sparse::SparseColMat<usize, f64>,
-        rhs: &[f64],
+        mut k: faer::sparse::SparseColMat<usize, f64>,
+        mut rhs: Vec<f64>,
         t1: f64,
         log: &mut StepLog,
     ) -> std::result::Result<Vec<f64>, Failure> {
         let phys = self.phys;
         let row: Vec<f64> = map.free_to_full.iter().map(|&d| phys.row_scale(d)).collect();
-        let (k, rhs) = if row.iter().any(|&s| s != 1.0) {
-            let (cp, ri) = (k.symbolic().col_ptr(), k.symbolic().row_idx());
-            let mut vals = k.val().to_vec();
-            for j in 0..k.ncols() {
+        // Rows scaled in place: the system is consumed by its solve (no copy of the matrix is kept alive
+        // beside its factors).
+        if row.iter().any(|&s| s != 1.0) {
+            let ncols = k.ncols();
+            let (symbolic, vals) = k.parts_mut();
+            let (cp, ri) = (symbolic.col_ptr(), symbolic.row_idx());
+            for j in 0..ncols {
                 for q in cp[j]..cp[j + 1] {
                     vals[q] *= row[ri[q]];
                 }
             }
-            let b: Vec<f64> = rhs.iter().zip(&row).map(|(v, s)| v * s).collect();
-            (faer::sparse::SparseColMat::new(k.symbolic().to_owned().expect("a valid pattern"), vals), b)
-        } else {
-            (k.clone(), rhs.to_vec())
-        };
+            for (v, s) in rhs.iter_mut().zip(&row) {
+                *v *= s;
+            }
+        }
         // A nan or an infinity in the data (E, NU, a load, a coordinate) reaches the system as such: name
         // it, rather than let the factorization call the system singular.
         let names = |dofs: &[usize]| -> String {
@@ -325,7 +327,7 @@ impl<'a, P: Physics> Driver<'a, P> {
                 let map_pred = DofMap::build(n, &incr)
                     .map_err(|e| self.cfg.err("EXCIT", format!("incompatible kinematic conditions: {e}")))?;
                 let pred = self.assemble(&fr, &map_pred, x, state, log)?;
-                let dx = self.factor_solve(&map_pred, &pred.k, &pred.rhs, t1, log)?;
+                let dx = self.factor_solve(&map_pred, pred.k, pred.rhs, t1, log)?;
                 x.iter().zip(map_pred.expand(&dx)).map(|(a, b)| a + b).collect()
             }
             Prediction::Imposed => {
@@ -383,7 +385,7 @@ impl<'a, P: Physics> Driver<'a, P> {
                     e
                 })
                 .map_err(Failure::Fatal)?;
-            let dx = self.factor_solve(&map, &now.k, &now.rhs, t1, log)?;
+            let dx = self.factor_solve(&map, now.k, now.rhs, t1, log)?;
             for (ui, di) in unew.iter_mut().zip(map.expand(&dx)) {
                 *ui += di;
             }
