@@ -16,4 +16,5 @@ pub mod stages;
 pub mod study;
 pub mod syntax;
 pub mod text;
+pub mod thermal;
 pub mod xfem;

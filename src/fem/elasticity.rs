@@ -807,10 +807,19 @@ pub struct BoundaryPoint {
 /// Gauss points of a boundary (skin) cell: SEG2/SEG3 in 2D (`dim = 2`),
 /// TRIA3/6, QUAD4/8/9 in 3D.
 pub fn boundary_points(m: Modelisation, t: CellType, coords: &[[f64; 3]]) -> Result<Vec<BoundaryPoint>, ElementError> {
+    boundary_points_on(m, t, coords, &boundary_rule(t))
+}
+
+/// [`boundary_points`] at the points of `rule` (another physics' skin family).
+pub fn boundary_points_on(
+    m: Modelisation,
+    t: CellType,
+    coords: &[[f64; 3]],
+    rule: &QuadratureRule,
+) -> Result<Vec<BoundaryPoint>, ElementError> {
     if !m.accepts_boundary_cell(t) {
         return Err(ElementError::WrongCellType { cell_type: t, modelisation: m });
     }
-    let rule = boundary_rule(t);
     let nno = t.nnodes();
     let mut n = [0.0; MAX_NODES];
     let mut dref = [[0.0; 3]; MAX_NODES];
