@@ -240,8 +240,8 @@ fn value_and_gradient(p: &GaussGeom, temps: &[f64], dim: usize) -> (f64, [f64; 3
     let mut g = [0.0; 3];
     for (a, ta) in temps.iter().enumerate() {
         t += p.n[a] * ta;
-        for i in 0..dim {
-            g[i] += p.dn[a][i] * ta;
+        for (gi, dn) in g.iter_mut().zip(&p.dn[a]).take(dim) {
+            *gi += dn * ta;
         }
     }
     (t, g)
@@ -376,6 +376,9 @@ pub fn source(
     Ok((load, tang))
 }
 
+/// A point's coordinates and the flux there.
+pub type PointFlux = ([f64; 3], [f64; 3]);
+
 /// The heat flux `q = −Λ(T) ∇T` at the `RIGI` points (`FLUX_ELGA`: `FLUX FLUY [FLUZ]`), with the
 /// points' coordinates; `law(T)` gives `Λ` there.
 pub fn flux(
@@ -384,7 +387,7 @@ pub fn flux(
     coords: &[[f64; 3]],
     temps: &[f64],
     law: &dyn Fn(f64) -> Result<Conductivity, ThermalError>,
-) -> Result<Vec<([f64; 3], [f64; 3])>, ThermalError> {
+) -> Result<Vec<PointFlux>, ThermalError> {
     let pts = m.points(t, coords, &m.rigi_rule(t))?;
     let dim = m.dim();
     let mut out = Vec::with_capacity(pts.len());
