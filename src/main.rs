@@ -158,6 +158,17 @@ enum MeshCmd {
         /// Mesh name in the file.
         #[arg(long, default_value = "MAIL")]
         name: String,
+        /// Move every vertex by up to this fraction of the cell size along each axis (nodes on a face
+        /// of the box stay on it): general, non-affine cells.
+        #[arg(long, default_value_t = 0.0)]
+        distort: f64,
+        /// Move every mid-edge node off the middle of its ends by up to this fraction of the cell size
+        /// along each axis: curved quadratic edges.
+        #[arg(long, default_value_t = 0.0)]
+        bend: f64,
+        /// Seed of the random moves.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
     },
     /// Write a quarter of a thick ring (2D: QUAD4, QUAD8) or of a thick-walled
     /// cylinder (3D: HEXA8, HEXA20) on the circles of radii RI and RE, with
@@ -199,11 +210,24 @@ fn mesh_command(action: MeshCmd) -> Result<(), aster::diag::Error> {
             }
             Ok(())
         }
-        MeshCmd::Box { cell, n, size, output, name } => {
+        MeshCmd::Box { cell, n, size, output, name, distort, bend, seed } => {
             let t = aster::mesh::CellType::from_name(&cell.to_ascii_uppercase()).ok_or_else(|| {
                 aster::diag::Error::runtime(format!("--cell {cell}: expected {}", aster::mesh::generate::BOX_CELLS))
             })?;
-            let m = aster::mesh::generate::box_mesh(t, &n, &size)?;
+            let mut m = aster::mesh::generate::box_mesh(t, &n, &size)?;
+            if distort != 0.0 || bend != 0.0 {
+                let d = aster::mesh::generate::Distortion { shift: distort, bend, seed };
+                aster::mesh::generate::distort(&mut m, &n, &size, d)?;
+                let bad = aster::fem::geometry::inverted_cells(&m);
+                if let Some(&c) = bad.first() {
+                    return Err(aster::diag::Error::runtime(format!(
+                        "--distort {distort} --bend {bend} --seed {seed}: {} cells are inverted (the first: {}); \
+                         take smaller moves",
+                        bad.len(),
+                        m.cell_names[c]
+                    )));
+                }
+            }
             aster::med::write_mesh(&output, &m, &name)?;
             println!("wrote {}", output.display());
             print!("{}", m.describe(&name));

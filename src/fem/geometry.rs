@@ -163,6 +163,27 @@ pub fn bounded_cells(
         .collect()
 }
 
+/// The cells of the mesh's dimension whose map is not positive: a Jacobian determinant ≤ 0 at one of
+/// their nodes or at a point of a rule of degree 4 (a generated or distorted mesh is checked with it).
+pub fn inverted_cells(mesh: &Mesh) -> Vec<usize> {
+    use crate::fem::quadrature::{rule_for_degree, RefDomain};
+    use crate::fem::reference::{jacobian_det, node_coords};
+    (0..mesh.ncells())
+        .filter(|&c| {
+            let t = mesh.cell_types[c];
+            if t.dim() != mesh.dim {
+                return false;
+            }
+            let x = cell_coords(mesh, c);
+            let rule = rule_for_degree(RefDomain::of(t), 4);
+            rule.points.iter().chain(node_coords(t)).any(|q| {
+                let d = jacobian_det(t, &x, q, mesh.dim);
+                d.is_nan() || d <= 0.0
+            })
+        })
+        .collect()
+}
+
 /// Node coordinates of cell `c`.
 pub fn cell_coords(mesh: &Mesh, c: usize) -> Vec<[f64; 3]> {
     mesh.cells[c].iter().map(|&n| mesh.coords[n]).collect()
@@ -348,5 +369,39 @@ mod tests {
         let n = normal_at(CellType::Seg2, &xs, &[0.0; 3]).unwrap();
         assert!(close(n, [0.8, -0.6, 0.0]));
         assert!(normal_at(CellType::Seg2, &[[1.0, 1.0, 0.0], [1.0, 1.0, 0.0]], &[0.0; 3]).is_none());
+    }
+
+    /// A distorted box (`mesh::generate::distort`: vertices moved by up to 0.2·h, mid-edge nodes by up
+    /// to 0.05·h off their edges' middles) of every family keeps positive Jacobians, its nodes on the
+    /// box's faces on them, and moves its inner nodes; a folded cell is found.
+    #[test]
+    fn distorted_boxes_keep_positive_jacobians() {
+        use crate::mesh::generate::{distort, Distortion};
+        use CellType::*;
+        for t in [Quad4, Quad8, Tria3, Tria6, Hexa8, Hexa20, Tetra4, Tetra10, Penta6, Penta15] {
+            let dim = t.dim();
+            let (n, size) = (vec![3; dim], vec![3.0; dim]);
+            let straight = box_mesh(t, &n, &size).unwrap();
+            let mut m = straight.clone();
+            let bend = if t.nnodes() > t.nvertices() { 0.05 } else { 0.0 };
+            distort(&mut m, &n, &size, Distortion { shift: 0.2, bend, seed: 7 }).unwrap();
+            assert!(inverted_cells(&m).is_empty(), "{}", t.name());
+            let mut moved = 0;
+            for (a, b) in straight.coords.iter().zip(&m.coords) {
+                for k in 0..dim {
+                    let on_face = a[k] == 0.0 || a[k] == 3.0;
+                    assert!(!on_face || a[k] == b[k], "{}: a node left the face {k} = {}", t.name(), a[k]);
+                    moved += usize::from((a[k] - b[k]).abs() > 1e-3);
+                }
+            }
+            assert!(moved > 0, "{}", t.name());
+            assert_eq!(
+                (&m.cells, &m.cell_groups, &m.node_groups),
+                (&straight.cells, &straight.cell_groups, &straight.node_groups)
+            );
+        }
+        let mut m = box_mesh(Quad4, &[1, 1], &[1.0, 1.0]).unwrap();
+        m.coords.swap(0, 1);
+        assert_eq!(inverted_cells(&m).len(), 1);
     }
 }

@@ -134,6 +134,96 @@ pub fn box_mesh(cell: CellType, n: &[usize], size: &[f64]) -> Result<Mesh> {
     Ok(mesh)
 }
 
+/// How [`distort`] moves the nodes of a box: each vertex by up to `shift`·h along every axis (h the
+/// cell size along it), each mid-edge node (and the middle of a diagonal that a simplex or prism box
+/// cuts) to the middle of its moved ends plus up to `bend`·h along every axis, which curves the edges
+/// of quadratic cells; the draws are uniform, from `seed`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Distortion {
+    pub shift: f64,
+    pub bend: f64,
+    pub seed: u64,
+}
+
+/// A [`box_mesh`] whose nodes are moved as `d` says: the cells become general quadrilaterals,
+/// hexahedra and simplices, with curved edges where they are quadratic, while every node on a face of
+/// the box moves only within that face (the box and its groups keep their shape, so that conditions
+/// on whole faces still describe a box). Neither the topology, the names nor the groups change. The
+/// caller checks the Jacobians (`fem::geometry::inverted_cells`): a shift of 0.2 and a bend of 0.05
+/// keep them positive on every cell type.
+pub fn distort(mesh: &mut Mesh, n: &[usize], size: &[f64], d: Distortion) -> Result<()> {
+    let dim = mesh.dim;
+    if n.len() != dim || size.len() != dim {
+        return Err(Error::runtime("distort: a cell count and a length per axis are needed"));
+    }
+    if !(0.0..0.5).contains(&d.shift) || !(0.0..0.25).contains(&d.bend) {
+        return Err(Error::runtime("distort: expected 0 <= shift < 0.5 and 0 <= bend < 0.25 (in cell sizes)"));
+    }
+    // The quadratic grid: index 2i on vertex i, 2i + 1 between; a linear box's nodes are on even indices.
+    let h: Vec<f64> = (0..dim).map(|a| size[a] / n[a] as f64).collect();
+    let index = |x: &[f64; 3]| -> [i64; 3] {
+        let mut p = [0i64; 3];
+        for a in 0..dim {
+            p[a] = (x[a] / h[a] * 2.0).round() as i64;
+        }
+        p
+    };
+    let mut rng = SplitMix(d.seed);
+    let mut moved: std::collections::HashMap<[i64; 3], [f64; 3]> = std::collections::HashMap::new();
+    let top = |a: usize| 2 * n[a] as i64;
+    let draw = |p: [i64; 3], amp: f64, rng: &mut SplitMix| -> [f64; 3] {
+        let mut v = [0.0; 3];
+        for a in 0..dim {
+            // A node on a face of the box stays on it.
+            if p[a] != 0 && p[a] != top(a) {
+                v[a] = amp * h[a] * (2.0 * rng.unit() - 1.0);
+            }
+        }
+        v
+    };
+    let mut vertex = |p: [i64; 3], rng: &mut SplitMix| -> [f64; 3] {
+        *moved.entry(p).or_insert_with(|| {
+            let v = draw(p, d.shift, rng);
+            [0, 1, 2].map(|a| if a < dim { p[a] as f64 / 2.0 * h[a] + v[a] } else { 0.0 })
+        })
+    };
+    // Vertices first, in node order, so that the draws do not depend on the mid-nodes'.
+    let grid: Vec<[i64; 3]> = mesh.coords.iter().map(index).collect();
+    for p in &grid {
+        if p.iter().all(|c| c % 2 == 0) {
+            vertex(*p, &mut rng);
+        }
+    }
+    for (k, p) in grid.iter().enumerate() {
+        if p.iter().all(|c| c % 2 == 0) {
+            mesh.coords[k] = vertex(*p, &mut rng);
+            continue;
+        }
+        // The middle of the segment from p − Σ e_a to p + Σ e_a over its odd axes: the edge or the
+        // diagonal (always from its lowest to its highest corner in a box) it is the middle of.
+        let lo = p.map(|c| c - c.rem_euclid(2));
+        let hi = p.map(|c| c + c.rem_euclid(2));
+        let (a, b) = (vertex(lo, &mut rng), vertex(hi, &mut rng));
+        let v = draw(*p, d.bend, &mut rng);
+        mesh.coords[k] = [0, 1, 2].map(|i| (a[i] + b[i]) / 2.0 + v[i]);
+    }
+    Ok(())
+}
+
+/// SplitMix64: a small seedable generator for the distortions (reproducible from the seed alone).
+struct SplitMix(u64);
+
+impl SplitMix {
+    /// Uniform in [0, 1).
+    fn unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// A quarter of a thick ring (2D) or of a thick-walled cylinder (3D): the box of `n` cells on
 /// `[0, RE − RI] × [0, π/2] (× [0, H])` mapped by `(s, θ, z) ↦ ((RI + s) cos θ, (RI + s) sin θ, z)`,
 /// so that every node, mid-edge nodes included, lies on its circle (quadratic cells follow the arcs).
