@@ -510,7 +510,7 @@ fn add_enriched(p: &HmProblem, c: usize, fe: &[f64], density: Density, f: &mut [
     let t = mesh.cell_types[c];
     let cut = xm.lsn.iter().any(|l| nodes.iter().any(|&n| l[n] > 0.0) && nodes.iter().any(|&n| l[n] < 0.0));
     if !cut {
-        let ff = crate::fem::reference::shape(t, &crate::fem::reference::ref_centroid(t));
+        let ff = crate::xfem::model::vertex_weights(t);
         let region =
             crate::xfem::region_code(&crate::xfem::model::point_signs(&xm.lsn, &xm.masters, nodes, &ff, &[], &[]));
         for (a_n, &n) in nodes.iter().enumerate() {
@@ -562,15 +562,9 @@ fn add_enriched(p: &HmProblem, c: usize, fe: &[f64], density: Density, f: &mut [
             _ => CellType::Tria6,
         };
         let xis: Vec<[f64; 3]> = sc.nodes.iter().map(|&q| cutting.points[q].xi).collect();
-        // The sub-cell's side: the signs at its centroid, with its Heaviside values for the cell's cracks.
-        let nv = tdim + 1;
-        let mut xc = [0.0; 3];
-        for xi in &xis[..nv] {
-            for k in 0..3 {
-                xc[k] += xi[k] / nv as f64;
-            }
-        }
-        let ffc = crate::fem::reference::shape(t, &xc);
+        // The sub-cell's side: its Heaviside values for the cell's cracks, the side of the cell's vertices
+        // for the others (as `XfemModel` decides it).
+        let ffc = crate::xfem::model::vertex_weights(t);
         let region = crate::xfem::region_code(&crate::xfem::model::point_signs(
             &xm.lsn,
             &xm.masters,

@@ -177,19 +177,65 @@ pub struct BulkPoint {
 /// through each sub-cell (defined in the parent's reference space) and the
 /// parent map.
 pub fn bulk_points(t: CellType, coords: &[[f64; 3]], xm: &XfemModel, cell: usize) -> Result<Vec<BulkPoint>, String> {
+    subcell_points(t, coords, xm, cell, false)
+}
+
+/// The degree a rule needs on a curved sub-cell of a parent of type `t` to integrate the parent's
+/// gradients exactly (the internal forces of a uniform stress): the gradients, of degree d in the
+/// parent's reference coordinates, composed with the quadratic sub-cell map (2d), times its Jacobian
+/// determinant (degree dim).
+fn curved_subcell_degree(t: CellType) -> usize {
+    let d = match t {
+        CellType::Tria6 | CellType::Tetra10 => 1,
+        CellType::Quad8 | CellType::Penta15 => 2,
+        CellType::Hexa20 => 3,
+        _ => 0,
+    };
+    2 * d + t.dim()
+}
+
+/// Whether a quadratic simplex (its nodes' reference coordinates in Code_Aster's order) is curved: a
+/// mid-node off the middle of its edge.
+fn is_curved(st: CellType, xis: &[[f64; 3]]) -> bool {
+    let edges = crate::xfem::levelset::edges(st);
+    xis.len() > st.nvertices()
+        && edges.iter().any(|e| {
+            let (a, b, m) = (xis[e[0]], xis[e[1]], xis[e[2]]);
+            let len = (0..3).map(|k| (b[k] - a[k]).powi(2)).sum::<f64>().sqrt();
+            (0..3).map(|k| (m[k] - (a[k] + b[k]) / 2.0).powi(2)).sum::<f64>().sqrt() > 1e-12 * len
+        })
+}
+
+/// The integration points of the sub-cells of cut cell `cell`: Code_Aster's sub-cell rule
+/// ([`subcell_rule`]), or with `exact`, on a curved sub-cell, a rule of the degree that integrates the
+/// internal forces of a uniform stress exactly ([`curved_subcell_degree`]: 9 for a HEXA20 parent, where
+/// Code_Aster's FPG15 is of degree 5), so that the linear fields stay exact on curved interfaces.
+fn subcell_points(
+    t: CellType,
+    coords: &[[f64; 3]],
+    xm: &XfemModel,
+    cell: usize,
+    exact: bool,
+) -> Result<Vec<BulkPoint>, String> {
     let xc = &xm.cells[&cell];
     let dim = t.dim();
     let st = match xc.cutting.subcells.first().map(|sc| sc.nodes.len()) {
         Some(n) => subcell_type(dim, n),
         None => return Ok(Vec::new()),
     };
-    let rule = subcell_rule(dim);
+    let base = subcell_rule(dim);
+    let curved_rule = (exact && curved_subcell_degree(t) > base.degree)
+        .then(|| rule_for_degree(RefDomain::of(st), curved_subcell_degree(t)));
     let nsub = st.nnodes();
     let mut out = Vec::new();
     let mut n = vec![0.0; nsub];
     let mut d = vec![[0.0; 3]; nsub];
     for (s, sc) in xc.cutting.subcells.iter().enumerate() {
         let xis: Vec<[f64; 3]> = sc.nodes.iter().map(|&p| xc.cutting.points[p].xi).collect();
+        let rule = match &curved_rule {
+            Some(r) if is_curved(st, &xis) => r,
+            _ => &base,
+        };
         for (q, wq) in rule.points.iter().zip(&rule.weights) {
             shape_and_deriv(st, q, &mut n, &mut d);
             let mut xi = [0.0; 3];
@@ -215,7 +261,7 @@ pub fn bulk_points(t: CellType, coords: &[[f64; 3]], xm: &XfemModel, cell: usize
 /// The integration points of a model cell: those of its sub-cells when it is cut, else its RIGI rule.
 fn cell_points(t: CellType, coords: &[[f64; 3]], xm: &XfemModel, cell: usize) -> Result<Vec<BulkPoint>, String> {
     if xm.cells.contains_key(&cell) {
-        return bulk_points(t, coords, xm, cell);
+        return subcell_points(t, coords, xm, cell, true);
     }
     let rule = crate::fem::elasticity::rigi_rule(t);
     let mut v = Vec::new();
@@ -362,6 +408,9 @@ pub struct Facet {
     /// Global sign tuples of the slave and master sides.
     pub slave: Vec<i32>,
     pub master: Vec<i32>,
+    /// Parent reference coordinates of the slave sub-cell's vertex off the facet: the facet's normal
+    /// points away from it, from the − to the + side.
+    pub inner: [f64; 3],
 }
 
 /// The simplex type of a sub-cell from its node count.
@@ -408,7 +457,20 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
             .filter(|sc| sc.he[p] == 1)
             .flat_map(|sc| faces.iter().map(move |f| key(sc, f)))
             .collect();
+        // Faces of two slave-side sub-cells are inside the slave side, whatever their vertices' level set
+        // (a point `xdecqu` put at a mid-node it set to 0, vertices snapped by `xajuls`).
+        let mut slave_count: BTreeMap<Vec<usize>, usize> = BTreeMap::new();
+        for sc in xc.cutting.subcells.iter().filter(|sc| sc.he[p] == -1) {
+            for f in &faces {
+                *slave_count.entry(key(sc, f)).or_default() += 1;
+            }
+        }
         let on_level_set = |pts: &[usize]| pts[..mesh.dim].iter().all(|&q| xc.cutting.points[q].lsn[p].abs() <= tol);
+        // The vertex of a sub-cell off one of its faces.
+        let opposite = |sc: &super::topose::SubCell, f: &[usize]| -> [f64; 3] {
+            let l = (0..=mesh.dim).find(|l| !f[..mesh.dim].contains(l)).unwrap_or(0);
+            xc.cutting.points[sc.nodes[l]].xi
+        };
         // The master-side sub-cells' faces on the level set (sub-cell, face points), gathered when a
         // slave face is not shared.
         let mut master_on: Option<Vec<(usize, Vec<usize>)>> = None;
@@ -426,7 +488,7 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
                 // moved by xmilfa) the points of a face, and a junction point
                 // found on a curved sub-edge, are only near the zero set.
                 let shared = master_faces.contains(&key(sc, f));
-                if !shared && !on_level_set(&pts) {
+                if !shared && (!on_level_set(&pts) || slave_count.get(&key(sc, f)).is_some_and(|&n| n > 1)) {
                     continue;
                 }
                 if !shared {
@@ -443,7 +505,13 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
                     if !pieces.is_empty() {
                         for (plus, g) in pieces {
                             let xi: Vec<[f64; 3]> = g.iter().map(|&q| xc.cutting.points[q].xi).collect();
-                            out.push(Facet { cell: c, xi, slave: xc.signs[s].clone(), master: xc.signs[plus].clone() });
+                            out.push(Facet {
+                                cell: c,
+                                xi,
+                                slave: xc.signs[s].clone(),
+                                master: xc.signs[plus].clone(),
+                                inner: opposite(sc, f),
+                            });
                         }
                         continue;
                     }
@@ -472,7 +540,7 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
                         }
                     }
                 }
-                out.push(Facet { cell: c, xi, slave, master });
+                out.push(Facet { cell: c, xi, slave, master, inner: opposite(sc, f) });
             }
         }
     }
@@ -603,9 +671,37 @@ pub fn facet_points(
         _ => CellType::Tria6,
     };
     let nf = ft.nnodes();
+    // On a curved facet, a rule that integrates the parent's shape functions times the facet's normal
+    // measure exactly (the forces of a uniform traction): degree 2p + dim − 1 for shape functions of
+    // degree p (10 on a HEXA20's), above the ORDRE_INT rules of Code_Aster (at most degree 7 on
+    // segments and 5 on triangles), which are exact on flat facets only.
+    let p = match t {
+        CellType::Tria6 | CellType::Tetra10 => 2,
+        CellType::Quad8 | CellType::Penta15 => 3,
+        CellType::Hexa20 => 4,
+        _ => 1,
+    };
+    let upgraded;
+    let rule = if is_curved(ft, &facet.xi) && rule.degree < 2 * p + dim - 1 {
+        upgraded = rule_for_degree(RefDomain::of(ft), 2 * p + dim - 1);
+        &upgraded
+    } else {
+        rule
+    };
     let mut n = vec![0.0; nf];
     let mut d = vec![[0.0; 3]; nf];
     let mut out = Vec::with_capacity(rule.len());
+    // The facet's own normal, pointing away from the slave sub-cell (from the − to the + side), one
+    // orientation for the whole facet: the interface term then closes the divergence theorem of the
+    // sub-cells exactly, also where the discrete interface is curved. ∇φ, Code_Aster's normal and the
+    // same on a flat facet, may turn past the facet's tangent plane at some of its points where the
+    // level set is curved (a sphere seen by a HEXA20 near a corner: 1e-3 of the cell off), which flipped
+    // the normal there.
+    let inner = crate::fem::reference::map_to_real(t, coords, &facet.inner);
+    let mut side = 0.0;
+    let mut sgn_of = |geo: &Vector3<f64>, x: &[f64; 3], w: f64| {
+        side += w * (0..dim).map(|k| geo[k] * (x[k] - inner[k])).sum::<f64>();
+    };
     for (q, wq) in rule.points.iter().zip(&rule.weights) {
         shape_and_deriv(ft, q, &mut n, &mut d);
         let mut xi = [0.0; 3];
@@ -642,13 +738,8 @@ pub fn facet_points(
         if gn.norm_squared() == 0.0 || measure == 0.0 {
             return Err("degenerate facet (zero measure or level-set gradient)".into());
         }
-        // The facet's own normal, oriented by ∇φ (from the − to the + side):
-        // the interface term then closes the divergence theorem of the
-        // sub-cells exactly, also where the discrete interface is curved
-        // (level sets adjusted near nodes). On a flat facet it is ∇φ/|∇φ|,
-        // Code_Aster's normal.
-        let sgn = if geo.dot(&gn) < 0.0 { -1.0 } else { 1.0 };
-        let nrm = sgn * geo / measure;
+        sgn_of(&geo, &crate::fem::reference::map_to_real(t, coords, &xi), *wq);
+        let nrm = geo / measure;
         // τ1: e_x projected on the tangent plane, (I - n nᵀ) e_x, or e_y's
         // projection when n ∥ e_x.
         let mut t1 = Vector3::new(1.0 - nrm[0] * nrm[0], -nrm[0] * nrm[1], -nrm[0] * nrm[2]);
@@ -658,6 +749,14 @@ pub fn facet_points(
         let t1 = t1 / t1.norm();
         let t2 = if dim == 3 { nrm.cross(&t1) } else { Vector3::zeros() };
         out.push(FacetPoint { xi, w: wq * measure, basis: [nrm.into(), t1.into(), t2.into()] });
+    }
+    if side < 0.0 {
+        for p in out.iter_mut() {
+            let [n, t1, t2] = p.basis;
+            let t2 = if dim == 3 { t2 } else { [0.0; 3] };
+            // n → −n, and the tangents kept right-handed: τ1 stays the projection of e_x, τ2 = n × τ1.
+            p.basis = [n.map(|c| -c), t1, t2.map(|c| -c)];
+        }
     }
     Ok(out)
 }

@@ -15,7 +15,7 @@
 
 use super::levelset::{node_signs, region_code};
 use super::topose::Cutting;
-use crate::fem::reference::shape;
+
 use crate::mesh::{CellType, Mesh};
 use std::collections::BTreeMap;
 use std::rc::Rc;
@@ -147,6 +147,15 @@ fn sign(v: f64) -> i32 {
     }
 }
 
+/// Weights that give the mean of a cell's vertex values, to pass as `ff` to [`point_signs`] for the side
+/// of a cell no crack cuts: its vertices decide it (a sub-simplex is cut where their signs differ), while
+/// a curved level set may take the other sign at its centre (an interface bulging through a face, or
+/// crossing an edge twice), which would put the cell on a side its neighbours' sub-cells are not on.
+pub fn vertex_weights(t: crate::mesh::CellType) -> Vec<f64> {
+    let nv = t.nvertices();
+    (0..t.nnodes()).map(|k| if k < nv { 1.0 / nv as f64 } else { 0.0 }).collect()
+}
+
 /// The global sign tuple at a point of a cell: the sub-cell's Heaviside
 /// values for the cracks the cell sees, the sign of the interpolated level
 /// set for the others, then the junction zeroing of the others (a branch
@@ -233,15 +242,9 @@ impl XfemModel {
             if let Some((cracks, cutting)) = cuttings.get(&c) {
                 let mut signs = Vec::with_capacity(cutting.subcells.len());
                 let mut regions = Vec::with_capacity(cutting.subcells.len());
+                // The cracks that do not cut the cell: the side of its vertices.
+                let ff = vertex_weights(t);
                 for sc in &cutting.subcells {
-                    let nv = if mesh.dim == 2 { 3 } else { 4 };
-                    let mut xi = [0.0; 3];
-                    for &p in &sc.nodes[..nv] {
-                        for (x, v) in xi.iter_mut().zip(&cutting.points[p].xi) {
-                            *x += v / nv as f64;
-                        }
-                    }
-                    let ff = shape(t, &xi);
                     let s = point_signs(&lsn, &masters, nodes, &ff, cracks, &sc.he);
                     let code = region_code(&s);
                     for &n in nodes {
@@ -254,9 +257,7 @@ impl XfemModel {
                 }
                 cells.insert(c, XfemCell { cracks: cracks.clone(), cutting: cutting.clone(), signs, regions });
             } else {
-                let xi = crate::fem::reference::ref_centroid(t);
-                let ff = shape(t, &xi);
-                let s = point_signs(&lsn, &masters, nodes, &ff, &[], &[]);
+                let s = point_signs(&lsn, &masters, nodes, &vertex_weights(t), &[], &[]);
                 let code = region_code(&s);
                 for &n in nodes {
                     if !around[n].iter().any(|(_, r)| *r == code) {

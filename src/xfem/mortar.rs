@@ -208,7 +208,7 @@ pub fn contact_cells(mesh: &Mesh, cracks: &[CrackTopo]) -> Vec<Vec<usize>> {
 /// Position of the zero of φ along an edge, t ∈ (0, 1) from a to b, for end
 /// values of strictly opposite signs; `mid` = value at the mid-edge node of a
 /// quadratic cell (parabolic interpolation) or None (linear).
-fn edge_root(fa: f64, fb: f64, mid: Option<f64>) -> f64 {
+pub(crate) fn edge_root(fa: f64, fb: f64, mid: Option<f64>) -> f64 {
     let lin = fa / (fa - fb);
     let Some(fm) = mid else { return lin };
     // φ(t) = fa (1−t)(1−2t) + 4 fm t(1−t) + fb t(2t−1) = A t² + B t + fa.
@@ -331,12 +331,71 @@ pub fn criteria(edges: &[CutEdge]) -> Vec<f64> {
         .collect()
 }
 
+/// The islands of a level set: the vertices of a group of at most `dim − 1` vertices of one strict sign
+/// (connected by the edges of the mesh's cells) whose every other neighbour has the opposite strict
+/// sign — a closed interface around one node (2D) or one or two (3D). Algorithm 2 ties the cut edges
+/// around such a group into one packet per vertex of it ([`vital_edges`]), a multiplier too poor to
+/// hold the group's side of the interface, which moves rigidly with the group's unknowns and its
+/// neighbours' Heaviside ones: 2 to 6 rigid motions that no multiplier tests (a singular tangent).
+pub fn islands(mesh: &Mesh, lsn: &[f64]) -> std::collections::BTreeSet<usize> {
+    let mut next: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for (c, nodes) in mesh.cells.iter().enumerate() {
+        if mesh.cell_types[c].dim() != mesh.dim {
+            continue;
+        }
+        for e in edges(mesh.cell_types[c]) {
+            let (a, b) = (nodes[e[0]], nodes[e[1]]);
+            next.entry(a).or_default().push(b);
+            next.entry(b).or_default().push(a);
+        }
+    }
+    let limit = mesh.dim.saturating_sub(1).max(1);
+    let mut out = std::collections::BTreeSet::new();
+    for (&v, _) in next.iter() {
+        if lsn[v] == 0.0 || out.contains(&v) {
+            continue;
+        }
+        // The component of v's strict sign, given up past the limit.
+        let mut group = vec![v];
+        let mut k = 0;
+        let mut closed = true;
+        while k < group.len() && closed {
+            for &w in &next[&group[k]] {
+                if group.contains(&w) {
+                    continue;
+                }
+                if lsn[w] * lsn[v] > 0.0 {
+                    group.push(w);
+                    if group.len() > limit {
+                        closed = false;
+                        break;
+                    }
+                } else if lsn[w] == 0.0 {
+                    closed = false;
+                    break;
+                }
+            }
+            k += 1;
+        }
+        if closed {
+            out.extend(group);
+        }
+    }
+    out
+}
+
 /// Select the vital edges among the cut edges (`xrell2`, algorithm 2) and
-/// group the nodes into packets.
-pub fn vital_edges(all: &[CutEdge]) -> Packets {
+/// group the nodes into packets. The edges of an island's vertices
+/// ([`islands`]) are not candidates: each of their nodes is a packet of its
+/// own (the multipliers are then the vertex functions there, and the
+/// directions among them that test no free jump are removed with the others,
+/// `discrete::null_multipliers`). Not Code_Aster's, whose algorithm leaves
+/// such an island free to move.
+pub fn vital_edges(all: &[CutEdge], islands: &std::collections::BTreeSet<usize>) -> Packets {
     // Degenerate edges (vertex points, see [`cut_edges`]) carry no relation:
     // each makes a packet of its own, numbered after the edge packets.
-    let edges: Vec<CutEdge> = all.iter().filter(|e| e.a != e.b).copied().collect();
+    let edges: Vec<CutEdge> =
+        all.iter().filter(|e| e.a != e.b && !islands.contains(&e.a) && !islands.contains(&e.b)).copied().collect();
     let edges = edges.as_slice();
     let crit = criteria(edges);
     let mut score: BTreeMap<usize, usize> = BTreeMap::new();
@@ -414,10 +473,12 @@ pub fn vital_edges(all: &[CutEdge]) -> Packets {
         *p = order.iter().position(|q| q == p).unwrap();
         packets[*p].push(*n);
     }
-    for e in all.iter().filter(|e| e.a == e.b) {
-        if let std::collections::btree_map::Entry::Vacant(v) = packet_of_node.entry(e.a) {
-            v.insert(packets.len());
-            packets.push(vec![e.a]);
+    for e in all.iter().filter(|e| e.a == e.b || islands.contains(&e.a) || islands.contains(&e.b)) {
+        for n in [e.a, e.b] {
+            if let std::collections::btree_map::Entry::Vacant(v) = packet_of_node.entry(n) {
+                v.insert(packets.len());
+                packets.push(vec![n]);
+            }
         }
     }
     Packets { vital, packet_of_node, packets }
@@ -459,7 +520,7 @@ mod tests {
         // A straight crack crossing a strip of quads: vertical edges 0-1, 2-3, 4-5 are
         // cut and share no node: all vital, three packets.
         let edges = [e(0, 1, 0.0, 0.5), e(2, 3, 1.0, 0.5), e(4, 5, 2.0, 0.5)];
-        let p = vital_edges(&edges);
+        let p = vital_edges(&edges, &Default::default());
         assert_eq!(p.vital, vec![(0, 1), (2, 3), (4, 5)]);
         assert_eq!(p.packets, vec![vec![0, 1], vec![2, 3], vec![4, 5]]);
     }
@@ -469,12 +530,12 @@ mod tests {
         // Node 0 on one side, 1, 2, 3 on the other: three edges at node 0 (score 3),
         // the end nodes score 1 each, so every edge scores 1: all vital, one packet.
         let edges = [e(0, 1, 0.0, 1.0), e(0, 2, 1.0, 1.0), e(0, 3, 2.0, 1.0)];
-        let p = vital_edges(&edges);
+        let p = vital_edges(&edges, &Default::default());
         assert_eq!(p.vital.len(), 3);
         assert_eq!(p.packets, vec![vec![0, 1, 2, 3]]);
         // A zig-zag 0-1, 1-2, 2-3: scores 1, 2, 1 → the middle edge goes.
         let edges = [e(0, 1, 0.0, 0.0), e(1, 2, 1.0, 0.0), e(2, 3, 2.0, 0.0)];
-        let p = vital_edges(&edges);
+        let p = vital_edges(&edges, &Default::default());
         assert_eq!(p.vital, vec![(0, 1), (2, 3)]);
         assert_eq!(p.packets, vec![vec![0, 1], vec![2, 3]]);
         assert_eq!(p.packet_of_node[&3], 1);
@@ -487,14 +548,14 @@ mod tests {
         let edges = [e(0, 1, 0.5, 0.0), e(1, 2, 1.0, 0.5), e(2, 3, 0.5, 1.0), e(3, 0, 0.0, 0.5)];
         let c = criteria(&edges);
         assert!(c.iter().all(|v| (v - c[0]).abs() < 1e-15));
-        let p = vital_edges(&edges);
+        let p = vital_edges(&edges, &Default::default());
         assert_eq!(p.vital, vec![(1, 2), (3, 0)]);
         // A larger criterion wins the tie: with the points of 0-1 and 2-3 near nodes 1 and
         // 2, edge 3-0 has the largest criterion and goes first, then 1-2.
         let edges = [e(0, 1, 0.9, 0.0), e(1, 2, 1.0, 0.5), e(2, 3, 0.9, 1.0), e(3, 0, 0.0, 0.5)];
         let c = criteria(&edges);
         assert!(c[3] > c[0] && c[3] > c[1] && c[3] > c[2], "{c:?}");
-        let p = vital_edges(&edges);
+        let p = vital_edges(&edges, &Default::default());
         assert_eq!(p.vital, vec![(0, 1), (2, 3)]);
         assert_eq!(p.packets, vec![vec![0, 1], vec![2, 3]]);
     }
@@ -514,7 +575,7 @@ mod tests {
         assert_eq!(edges.len(), 3, "{edges:?}");
         assert!(edges.iter().all(on_row));
         // Each vertex of the row is a packet of its own, with no vital edge.
-        let p = vital_edges(&edges);
+        let p = vital_edges(&edges, &Default::default());
         assert!(p.vital.is_empty());
         assert_eq!(p.packets.len(), 3);
         // The + side carries no facet, hence no point.

@@ -328,6 +328,11 @@ struct Ctx<'a> {
     pmil: Vec<Pt>,
     /// Characteristic length of the parent (`loncar`).
     lonref: f64,
+    /// Mid-points placed flat (the middles of their chords) rather than on a
+    /// curved interface: in 2D the type-2 and type-3 points, in 3D the
+    /// centre of an interface quadrangle (the points inside a sub-simplex);
+    /// set while a sub-simplex whose curved cutting folds is cut again.
+    flat: std::cell::Cell<bool>,
 }
 
 impl Ctx<'_> {
@@ -719,7 +724,7 @@ impl Ctx<'_> {
     fn check_on_crack(&self, xi: &[f64; 3], ifiss: usize, what: &str) -> Result<(), String> {
         let v = self.interp(xi, ifiss);
         let scale = self.lsn[ifiss].iter().fold(0.0f64, |m, v| m.max(v.abs())).max(1e-300);
-        if v.abs() > 1e-10 * scale {
+        if v.abs() > 1e-8 * scale {
             return Err(format!(
                 "TOPOSE: {what}: the point is off the interface (level set {v:.3e}) after the Newton solve"
             ));
@@ -751,18 +756,35 @@ impl Ctx<'_> {
     }
 
     /// Type-2 mid-point between intersection points `ip1` and `ip2` (1-based
-    /// in `inter`, `xmifis`): from their middle, a Newton solve along the
-    /// perpendicular to the segment puts it on the interface — in 2D the
-    /// perpendicular in the reference plane, in 3D the perpendicular within
-    /// the face of the sub-tetrahedron that holds both points (`detefa`).
+    /// in `inter`, `xmifis`): from their middle, a Newton solve along a line
+    /// across the segment puts it on the interface, the iterates kept in the
+    /// triangle that holds both points (`xintva`'s Dekker bounds); where the
+    /// solve does not converge there, the middle itself, as Code_Aster's
+    /// `xnewto` takes on its last split. In 2D the line is the perpendicular
+    /// in the reference plane (Code_Aster's); in 3D it lies within the face of
+    /// the sub-tetrahedron that holds both points (`detefa`), toward the
+    /// vertex their edges share (along the edge of the edge point when the
+    /// other is a vertex): a direction made of the face's points, so that the
+    /// two cells — or sub-tetrahedra — sharing the face find the same point
+    /// whatever their reference coordinates (Code_Aster's perpendicular is
+    /// not invariant under the affine change of coordinates between two
+    /// TETRA10 sharing a face, and its point on a curved interface differs
+    /// between them). On a straight interface both give the middle. A point
+    /// that would fold the face's sub-triangles is replaced by the middle
+    /// ([`Ctx::face_folds`]), a rule of the face alone.
     fn mifis(&self, sub: &[Wp], inter: &[Inter], ip1: usize, ip2: usize, ifiss: usize) -> Result<Pt, String> {
         let (p1, p2) = (&inter[ip1 - 1], &inter[ip2 - 1]);
         let (q1, q2) = (V3::from(p1.p.xi), V3::from(p2.p.xi));
+        if self.flat.get() && self.dim == 2 {
+            return Ok(self.to_real(((q1 + q2) / 2.0).into()));
+        }
         // In 3D, on a face bent by an earlier crack (`CurvedFace`), the search runs in the plane of the
         // face's vertices, from the points brought back to it, and is lifted onto the face.
-        let (v, face, q1, q2) = if self.dim == 2 {
+        let (v, face, q1, q2, tri) = if self.dim == 2 {
             let d = q2 - q1;
-            (xnormv(V3::new(-d[1], d[0], 0.0)), None, q1, q2)
+            let tri = [0, 1, 2].map(|l| self.pt(sub[l], &[], &[]).map(|p| V3::from(p.xi)));
+            let tri = [tri[0].clone()?, tri[1].clone()?, tri[2].clone()?];
+            (xnormv(V3::new(-d[1], d[0], 0.0)), None, q1, q2, tri)
         } else {
             let ([na, nb, nc], ids) = self.detefa(sub, p1, p2)?;
             let face = CurvedFace::of(self, sub, ids)?;
@@ -771,14 +793,11 @@ impl Ctx<'_> {
                 None => (q1, q2),
             };
             let (pa, pb, pc) = (V3::from(na.xi), V3::from(nb.xi), V3::from(nc.xi));
-            let (bc, ba, u) = (xnormv(pc - pb), xnormv(pa - pb), xnormv(q2 - q1));
-            let (k, k1, k2) = (ba.dot(&bc), ba.dot(&u), bc.dot(&u));
-            let alpha = (1.0 / (k1 * k1 + k2 * k2 - 2.0 * k * k1 * k2)).sqrt();
-            let v = alpha * (k2 * ba - k1 * bc);
-            if !v.iter().all(|c| c.is_finite()) {
+            let v = if p1.edge == 0 || p2.edge == 0 { xnormv(pc - pb) } else { xnormv(pa - (q1 + q2) / 2.0) };
+            if v.norm() == 0.0 || !v.iter().all(|c| c.is_finite()) {
                 return Err("TOPOSE: xmifis: the two points and the face are aligned".into());
             }
-            (v, face, q1, q2)
+            (v, face, q1, q2, [pa, pb, pc])
         };
         let m = (q1 + q2) / 2.0;
         let curve = |k: f64| {
@@ -786,9 +805,29 @@ impl Ctx<'_> {
             let (b, db) = face.as_ref().map_or((V3::zeros(), V3::zeros()), |f| f.bubble(&p, &v));
             ((p + b).into(), (v + db).into())
         };
-        let k = self.newton(0.0, (-f64::MAX, f64::MAX), curve, ifiss).unwrap_or(0.0);
-        let xi = curve(k).0;
-        self.check_on_crack(&xi, ifiss, "xmifis")?;
+        let bounds = dekker_triangle(&m, &v, &tri);
+        let xi = match self.newton(0.0, bounds, curve, ifiss) {
+            Some(k) if self.check_on_crack(&curve(k).0, ifiss, "xmifis").is_ok() => {
+                let xi = curve(k).0;
+                // Only a point off the chord's middle by more than BENT of the chord is a curved
+                // interface's: below, the level set was bent by `xajuls` (nodal values set to 0, which
+                // moves the interface by at most the distance they moved it), and a sub-triangle it
+                // folds is a sliver of a vertex that the interface passes within that distance of —
+                // taking the middle there would move the interface off the neighbouring cells' by as
+                // much (a TETRA10 junction 1e-6·h from a node: 4.6e-7·U).
+                let bent = (V3::from(xi) - m).norm() > BENT * (q2 - q1).norm();
+                if self.dim == 3
+                    && face.is_none()
+                    && bent
+                    && face_folds(&tri, &q1, &q2, &V3::from(xi), p1.edge == 0 || p2.edge == 0)
+                {
+                    curve(0.0).0
+                } else {
+                    xi
+                }
+            }
+            _ => curve(0.0).0,
+        };
         Ok(self.to_real(xi))
     }
 
@@ -871,6 +910,9 @@ impl Ctx<'_> {
         let q1 = inter[ip1 - 1].p.xi;
         let q2 = inter[ip2 - 1].p.xi;
         let pm = mil.get(pm2 - 1).ok_or("TOPOSE: xmilfa: missing mid-point")?.xi;
+        if self.flat.get() && self.dim == 2 {
+            return Ok(self.to_real(mid(&q1, &ptb)));
+        }
         // On a curved face (an earlier crack's, bent by xajuls) the middles are taken on the face.
         let face = if self.dim == 3 { CurvedFace::of(self, sub, [a, b, shared])? } else { None };
         let middle = |p: &[f64; 3], q: &[f64; 3]| -> Result<[f64; 3], String> {
@@ -1036,7 +1078,7 @@ impl Ctx<'_> {
             let p = self.mifis(sub, inter, i1, i2, ifiss)?;
             add_mid(&mut mil, p, lonref);
         }
-        let c = self.cenfi(inter, &mil, [1, 2, 3, 4], [9, 12, 11, 10], ifiss)?;
+        let c = self.cenfi(sub, inter, &mil, [1, 2, 3, 4], [9, 12, 11, 10], ifiss)?;
         add_mid(&mut mil, c, lonref);
         for &(i1, i2, pm2) in &pairs {
             let p = self.milfa(sub, inter, i1, i2, pm2, &mil, ifiss)?;
@@ -1049,14 +1091,18 @@ impl Ctx<'_> {
     }
 
     /// Centre of the interface quadrangle (pi1, pi2, pi4, pi3) of a
-    /// sub-tetrahedron (`xcenfi`): the middle of the diagonal pi1–pi4, put
-    /// on the interface by a Newton solve along the level set's gradient. `quad`
-    /// is (pi1, pi2, pi3, pi4) and `mids` the 1-based mid-points of its sides
-    /// (m12, m13, m34, m24) in `mil`. A side bent by more than 1e-2 rad
-    /// (a curved interface, where Code_Aster starts a Newton solve elsewhere)
-    /// is refused.
+    /// sub-tetrahedron (`xcenfi`): `quad` is (pi1, pi2, pi3, pi4) and `mids`
+    /// the 1-based mid-points of its sides (m12, m13, m34, m24) in `mil`. The
+    /// search starts from the middle of the diagonal pi1–pi4, or, where a side
+    /// is bent by more than 1e-2 rad from its chord (a curved interface), from
+    /// the middle of the mid-points of that side and of the opposite one; it
+    /// runs along the level set's gradient there, the iterates kept in the
+    /// sub-tetrahedron (`xintva`), and takes the start where it does not
+    /// converge (`xnewto`'s last split). In [`Ctx::flat`] mode: the middle
+    /// of pi1–pi4.
     fn cenfi(
         &self,
+        sub: &[Wp],
         inter: &[Inter],
         mil: &[Pt],
         quad: [usize; 4],
@@ -1066,24 +1112,33 @@ impl Ctx<'_> {
         let [p1, p2, p3, p4] = quad;
         let [m12, m13, m34, m24] = mids;
         let vin = |k: usize| V3::from(inter[k - 1].p.xi);
-        let mut maxi: f64 = 0.0;
-        for (a, b, m) in [(p1, p2, m12), (p2, p4, m24), (p3, p4, m34), (p1, p3, m13)] {
-            let pm = mil.get(m - 1).ok_or("TOPOSE: xcenfi: missing mid-point")?.xi;
-            let cosi = xnormv(vin(b) - vin(a)).dot(&xnormv(V3::from(pm) - vin(a)));
-            if cosi < 1.0 {
-                maxi = maxi.max(cosi.acos());
+        let vmil = |k: usize| mil.get(k - 1).map(|p| V3::from(p.xi)).ok_or("TOPOSE: xcenfi: missing mid-point");
+        if self.flat.get() {
+            return Ok(self.to_real(((vin(p1) + vin(p4)) / 2.0).into()));
+        }
+        let (mut maxi, mut worst) = (0.0f64, 0);
+        for (side, (a, b, m)) in [(p1, p2, m12), (p2, p4, m24), (p3, p4, m34), (p1, p3, m13)].into_iter().enumerate() {
+            let cosi = xnormv(vin(b) - vin(a)).dot(&xnormv(vmil(m)? - vin(a)));
+            if cosi < 1.0 && cosi.acos() > maxi {
+                (maxi, worst) = (cosi.acos(), side);
             }
         }
-        if maxi > 1e-2 {
-            return Err("TOPOSE: xcenfi: curved interface in a sub-tetrahedron is not supported".into());
-        }
-        // From there, a Newton solve along the level set's gradient.
-        let m = mid(&inter[p1 - 1].p.xi, &inter[p4 - 1].p.xi);
-        let g: [f64; 3] = xnormv(V3::from(self.lsn_grad(&m, ifiss).1)).into();
-        let line = |k: f64| ([0, 1, 2].map(|j| m[j] + k * g[j]), g);
-        let k = self.newton(0.0, (-f64::MAX, f64::MAX), line, ifiss).unwrap_or(0.0);
-        let c = line(k).0;
-        self.check_on_crack(&c, ifiss, "xcenfi")?;
+        let start = if maxi <= 1e-2 {
+            (vin(p1) + vin(p4)) / 2.0
+        } else if worst == 0 || worst == 2 {
+            (vmil(m12)? + vmil(m34)?) / 2.0
+        } else {
+            (vmil(m13)? + vmil(m24)?) / 2.0
+        };
+        let g = xnormv(V3::from(self.lsn_grad(&start.into(), ifiss).1));
+        let line = |k: f64| ((start + k * g).into(), g.into());
+        let verts: Vec<V3> =
+            sub[..4].iter().map(|&w| self.pt(w, &[], &[]).map(|p| V3::from(p.xi))).collect::<Result<_, _>>()?;
+        let bounds = dekker_tetra(&start, &g, &verts);
+        let c = match self.newton(0.0, bounds, line, ifiss) {
+            Some(k) if self.check_on_crack(&line(k).0, ifiss, "xcenfi").is_ok() => line(k).0,
+            _ => start.into(),
+        };
         Ok(self.to_real(c))
     }
 
@@ -1132,7 +1187,7 @@ impl Ctx<'_> {
             let p = self.mifis(sub, inter, i1, i2, ifiss)?;
             add_mid(&mut mil, p, lonref);
         }
-        let c = self.cenfi(inter, &mil, [4, 3, 1, 2], [8, 9, 1, 7], ifiss)?;
+        let c = self.cenfi(sub, inter, &mil, [4, 3, 1, 2], [8, 9, 1, 7], ifiss)?;
         add_mid(&mut mil, c, lonref);
         for (i1, i2, pm2) in [(2, 3, 7), (3, 4, 8)] {
             let p = self.milfa(sub, inter, i1, i2, pm2, &mil, ifiss)?;
@@ -1247,6 +1302,108 @@ impl CurvedFace {
         }
         Err("TOPOSE: a point of a curved sub-cell face could not be brought back to its plane".into())
     }
+}
+
+/// The interval of a line search m + k·v (v a unit vector) that stays in the triangle `tri` (`xintva`
+/// for `xmifis`): the parameters where the line meets the triangle's sides, the last one found on either
+/// side of the start; unbounded when the line meets no side on one of them.
+fn dekker_triangle(m: &V3, v: &V3, tri: &[V3; 3]) -> (f64, f64) {
+    const TOLE: f64 = 5e-7;
+    let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+    for i in 0..3 {
+        let (a, b) = (tri[i], tri[(i + 1) % 3]);
+        let len = (b - a).norm();
+        let e = xnormv(b - a);
+        let (b1, c1, c2) = (v.dot(&e), v.dot(&(a - m)), (a - m).dot(&e));
+        let det = b1 * b1 - 1.0;
+        if det.abs() <= 1e-12 || len == 0.0 {
+            continue;
+        }
+        let (kappa, alpha) = ((-c1 + c2 * b1) / det, (c2 - b1 * c1) / det / len);
+        if (-TOLE..=1.0 + TOLE).contains(&alpha) {
+            if kappa <= 0.0 {
+                lo = kappa;
+            }
+            if kappa >= 0.0 {
+                hi = kappa;
+            }
+        }
+    }
+    if lo < hi {
+        (lo.max(-f64::MAX), hi.min(f64::MAX))
+    } else {
+        (-f64::MAX, f64::MAX)
+    }
+}
+
+/// The interval of a line search m + k·g (g a unit vector) that stays in the tetrahedron `t` (`xintva`
+/// for `xcenfi`): within ±10, narrowed by the planes of its faces that the line is not parallel to.
+fn dekker_tetra(m: &V3, g: &V3, t: &[V3]) -> (f64, f64) {
+    const TOLE: f64 = 5e-7;
+    let (a, b, c, d) = (t[0], t[1], t[2], t[3]);
+    let (ab, bc, ca, ad, bd) = (xnormv(b - a), xnormv(c - b), xnormv(a - c), xnormv(d - a), xnormv(d - b));
+    let (mut lo, mut hi) = (-10.0, 10.0);
+    for (n, p) in [(ab.cross(&bc), a), (ab.cross(&ad), a), (ca.cross(&ad), a), (bd.cross(&bc), b)] {
+        let n = xnormv(n);
+        let ng = n.dot(g);
+        if ng.abs() >= TOLE {
+            let alpha = (p - m).dot(&n) / ng;
+            if alpha > lo && alpha < 0.0 {
+                lo = alpha;
+            } else if alpha < hi && alpha > 0.0 {
+                hi = alpha;
+            }
+        }
+    }
+    (lo, hi)
+}
+
+/// The offset of a type-2 point from the middle of its chord, relative to the chord, below which the
+/// interface counts as straight for [`face_folds`] (the folds of a curved one are seen from 1.5e-2 on
+/// the random spheres of `tests/it/xfem/curved.rs`; `xajuls` snaps vertex values within 1e-6 of an
+/// edge's end, which bends a straight interface by as little).
+const BENT: f64 = 1e-3;
+
+/// Whether a type-2 point `m` between `q1` and `q2` on the face `tri` = (a, b, c) of a sub-tetrahedron
+/// folds the face's sub-triangles it is a mid-node of: the corner (a, q1, q2) and the two triangles the
+/// quadrangle beyond can give, (q1, q2, b) and (q1, q2, c), their other mid-nodes straight; for a vertex
+/// point (`vertex`: a is q1 or q2, the other on b–c), (a, q, b) and (a, q, c). Computed in the face's
+/// own affine coordinates, so that both sub-tetrahedra — or cells — sharing the face decide alike.
+fn face_folds(tri: &[V3; 3], q1: &V3, q2: &V3, m: &V3, vertex: bool) -> bool {
+    let [a, b, c] = *tri;
+    let (e1, e2) = (b - a, c - a);
+    let (g11, g12, g22) = (e1.dot(&e1), e1.dot(&e2), e2.dot(&e2));
+    let det = g11 * g22 - g12 * g12;
+    if det <= 0.0 {
+        return false;
+    }
+    let coords = |p: &V3| -> [f64; 3] {
+        let r = p - a;
+        let (r1, r2) = (r.dot(&e1), r.dot(&e2));
+        [(r1 * g22 - r2 * g12) / det, (g11 * r2 - g12 * r1) / det, 0.0]
+    };
+    let tria6 = |p: V3, q: V3, r: V3, mpq: V3| -> bool {
+        let nodes = [p, q, r, mpq, (q + r) / 2.0, (r + p) / 2.0].map(|x| coords(&x));
+        folds(CellType::Tria6, &nodes)
+    };
+    let others: Vec<V3> = if vertex { vec![b, c] } else { vec![a, b, c] };
+    others.into_iter().any(|r| tria6(*q1, *q2, r, *m))
+}
+
+/// Whether the quadratic map of a sub-cell whose nodes are at the reference points `xi` (a SEG3, TRIA6
+/// or TETRA10, or a linear simplex) folds: its Jacobian changes sign over its nodes and the points of a
+/// rule of degree 4.
+pub(super) fn folds(st: CellType, xi: &[[f64; 3]]) -> bool {
+    use crate::fem::quadrature::{rule_for_degree, RefDomain};
+    let dim = st.dim();
+    let rule = rule_for_degree(RefDomain::of(st), 4);
+    let (mut pos, mut neg) = (false, false);
+    for q in rule.points.iter().chain(node_coords(st)) {
+        let d = crate::fem::reference::jacobian_det(st, xi, q, dim);
+        pos |= d > 0.0;
+        neg |= d < 0.0 || d.is_nan();
+    }
+    pos && neg
 }
 
 /// The vertex two edges share (1-based local numbers), if any.
@@ -1375,6 +1532,45 @@ fn xpente(n: &[Wp; 18]) -> [[Wp; 10]; 3] {
 }
 
 impl Ctx<'_> {
+    /// Cut a sub-simplex by crack `ifiss` (`xdecqu`, `xdecqv`, the children oriented): with the mid-points
+    /// on the curved interface as Code_Aster places them, and where a child's map folds — a curved
+    /// interface, or one curved in the reference coordinates of a non-affine parent, bending an edge past
+    /// a vertex or another edge — again with the points inside the sub-simplex flat ([`Ctx::flat`]),
+    /// which the flat points keep from folding in a straight sub-simplex. The numbering and the
+    /// connectivity are the same either way; a cutting that still folds is left to the tiling check.
+    fn cut_simplex(&self, sub: &[Wp], ifiss: usize, fisc: &[(usize, f64)]) -> Result<(Decoupe, Vec<Vec<Wp>>), String> {
+        let attempt = |flat: bool| -> Result<(Decoupe, Vec<Vec<Wp>>), String> {
+            self.flat.set(flat);
+            let d = self.decqu(sub, ifiss, fisc);
+            self.flat.set(false);
+            let d = d?;
+            let mut children = self.decqv(sub, &d)?;
+            self.orient(&mut children, &d)?;
+            Ok((d, children))
+        };
+        let curved = attempt(false)?;
+        if !curved.0.cut || self.dim == 1 || !self.children_fold(&curved.1, &curved.0)? {
+            return Ok(curved);
+        }
+        match attempt(true) {
+            Ok(flat) if !self.children_fold(&flat.1, &flat.0)? => Ok(flat),
+            _ => Ok(curved),
+        }
+    }
+
+    /// Whether the map of one of `children` folds ([`folds`]).
+    fn children_fold(&self, children: &[Vec<Wp>], d: &Decoupe) -> Result<bool, String> {
+        let st = Cutting::subcell_type(self.dim);
+        for ch in children {
+            let xi: Vec<[f64; 3]> =
+                ch.iter().map(|&w| self.pt(w, &d.inter, &d.mil).map(|p| p.xi)).collect::<Result<_, _>>()?;
+            if xi.len() == st.nnodes() && folds(st, &xi) {
+                return Ok(true);
+            }
+        }
+        Ok(false)
+    }
+
     /// Children of a sub-simplex (`xdecqv`): connectivities with the points
     /// of the sub-simplex ([`Wp::Inter`], [`Wp::LocalMid`]).
     fn decqv(&self, sub: &[Wp], d: &Decoupe) -> Result<Vec<Vec<Wp>>, String> {
@@ -1670,7 +1866,7 @@ impl Ctx<'_> {
             let mut he: Vec<i32> = parent_he[..ifiss].to_vec();
             he.push(0);
             let mut som = vec![0.0; fisc.len()];
-            let (mut cur, mut abslsn) = (0.0, 0.0);
+            let (mut cur, mut abslsn, mut vertices) = (0.0, 0.0, 0.0);
             let mut bary = [0.0; 3];
             for (pos, &id) in ch.iter().enumerate() {
                 let p = self.pt(id, &d.inter, &d.mil)?;
@@ -1682,6 +1878,11 @@ impl Ctx<'_> {
                     continue;
                 }
                 let l = self.node_lsn(id, ifiss, &d.inter, &d.mil)?;
+                // Generated vertices are on the interface as the cutting sees it (`xdecqu` puts a point at a
+                // mid-node whose level set it sets to 0, where it is not), and values within 1e-8 are 0.
+                if pos <= self.dim && !generated && l.abs() > 1e-8 {
+                    vertices += l;
+                }
                 for (sm, &(m, _)) in som.iter_mut().zip(fisc) {
                     *sm += self.node_lsn(id, m, &d.inter, &d.mil)?;
                 }
@@ -1692,6 +1893,16 @@ impl Ctx<'_> {
                 he[0] = if fisc[0].1 < 0.0 { -1 } else { 1 };
             }
             if fisc.iter().zip(&som).any(|(&(_, c), s)| c * s > 0.0) {
+                out.push(he);
+                continue;
+            }
+            // The side of the child's vertices off the interface: they decide which side a sub-simplex
+            // is on (it is cut where they differ), while a curved level set may take the other sign at
+            // a mid-node, which Code_Aster's sum over the nodes counts (an edge the interface crosses
+            // twice, a face it bulges through): there its sign would put the child on the side its
+            // vertices — and the neighbouring cells — are not on.
+            if vertices != 0.0 {
+                he[ifiss] = if vertices < 0.0 { -1 } else { 1 };
                 out.push(he);
                 continue;
             }
@@ -1808,6 +2019,7 @@ fn cut_quadratic_split(
         pint: Vec::new(),
         pmil: Vec::new(),
         lonref: loncar(t, coords),
+        flat: std::cell::Cell::new(false),
     };
     // Centre nodes (`ndcent`): QUAD8, HEXA20 and PENTA15 only.
     let centres: &[[f64; 3]] = match t {
@@ -1837,9 +2049,7 @@ fn cut_quadratic_split(
         let fisc = master_chain(cracks, ifiss)?;
         let nit = subs.len();
         for it in 0..nit {
-            let d = ctx.decqu(&subs[it], ifiss, &fisc)?;
-            let mut children = ctx.decqv(&subs[it], &d)?;
-            ctx.orient(&mut children, &d)?;
+            let (d, mut children) = ctx.cut_simplex(&subs[it], ifiss, &fisc)?;
             let hes = ctx.heaviside(&children, &d, &heav[it], ifiss, &fisc)?;
             // Archive the intersection points (vertex points keep their id).
             for (ipt, p) in d.inter.iter().enumerate() {
@@ -2016,14 +2226,7 @@ pub fn tiling_defect(t: CellType, cut: &Cutting) -> f64 {
             return f64::INFINITY;
         }
         let xi: Vec<[f64; 3]> = sc.nodes.iter().map(|&p| cut.points[p].xi).collect();
-        let (mut pos, mut neg) = (false, false);
-        let corners = crate::fem::reference::node_coords(st);
-        for q in rule.points.iter().chain(&corners[..=dim]) {
-            let d = crate::fem::reference::jacobian_det(st, &xi, q, dim);
-            pos |= d > 0.0;
-            neg |= d < 0.0;
-        }
-        if pos && neg {
+        if folds(st, &xi) {
             return f64::INFINITY;
         }
         for (q, w) in rule.points.iter().zip(&rule.weights) {

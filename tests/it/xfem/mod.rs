@@ -1,7 +1,8 @@
 //! The X-FEM library and stages on the real meshes: level sets and enrichment, TOPOSE cutting (quadratic
-//! and linear parents, quadratic boundary cells), mortar packets, the cohesive law, interfaces near or through nodes, POST_ERREUR
+//! and linear parents, quadratic boundary cells), mortar packets, the cohesive law, interfaces near or through nodes, curved interfaces (random circles and spheres), POST_ERREUR
 //! on a cut cell, and the coupled flow through a fluid-filled cohesive interface.
 mod cohesive;
+mod curved;
 mod fluid_interface;
 mod hard_cases;
 mod levelsets;

@@ -45,8 +45,8 @@ fn build(mesh: Rc<Mesh>, c1: &Rc<Crack>, c2: &Rc<Crack>) -> Case {
         "contact cells: FISS1 {:?}, FISS2 {:?}; FISS2 edges beyond the junction: {beyond}",
         contact[0], contact[1]
     );
-    let p1 = vital_edges(&e1);
-    let p2 = vital_edges(&e2);
+    let p1 = vital_edges(&e1, &Default::default());
+    let p2 = vital_edges(&e2, &Default::default());
     let nn = mesh.nnodes();
     let enriched = [(0..nn).map(|n| k1.enriched(n)).collect(), (0..nn).map(|n| k2.enriched(n)).collect()];
     drop((k1, k2));

@@ -25,10 +25,10 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// SplitMix64: a small, seedable generator (the crate has no `rand`).
-struct Rng(u64);
+pub(super) struct Rng(pub(super) u64);
 
 impl Rng {
-    fn next(&mut self) -> u64 {
+    pub(super) fn next(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
@@ -36,16 +36,16 @@ impl Rng {
         z ^ (z >> 31)
     }
     /// Uniform in [0, 1).
-    fn unit(&mut self) -> f64 {
+    pub(super) fn unit(&mut self) -> f64 {
         (self.next() >> 11) as f64 / (1u64 << 53) as f64
     }
-    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+    pub(super) fn range(&mut self, lo: f64, hi: f64) -> f64 {
         lo + (hi - lo) * self.unit()
     }
-    fn below(&mut self, n: usize) -> usize {
+    pub(super) fn below(&mut self, n: usize) -> usize {
         (self.next() % n as u64) as usize
     }
-    fn sign(&mut self) -> f64 {
+    pub(super) fn sign(&mut self) -> f64 {
         if self.next() & 1 == 0 {
             1.0
         } else {
@@ -58,7 +58,7 @@ impl Rng {
 /// from the clock), else [`DEFAULT_SEED`]. A fixed default keeps the suite
 /// deterministic; random seeds explore (docs/stability.md lists what they
 /// found).
-fn seed() -> u64 {
+pub(super) fn seed() -> u64 {
     match std::env::var("ASTER_PROPTEST_SEED").ok().as_deref() {
         Some("random") => {
             std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map(|d| d.as_nanos() as u64).unwrap_or(1)
@@ -94,6 +94,11 @@ const FAMILIES: [CellType; 10] = [
 /// The command file of one cut: `phi` is the level set (a Python
 /// expression of X, Y, Z).
 fn scene(dim: usize, phi: &str, tol: f64) -> String {
+    scene_on(dim, phi, tol, L)
+}
+
+/// [`scene`] on a box of side `l`.
+pub(super) fn scene_on(dim: usize, phi: &str, tol: f64, l: f64) -> String {
     let (model, group, bounds, comps, para) = if dim == 2 {
         (
             "D_PLAN",
@@ -127,7 +132,7 @@ fn scene(dim: usize, phi: &str, tol: f64) -> String {
     format!(
         r#"DEBUT(CODE="OUI")
 U = {U:e}
-L = {L:?}
+L = {l:?}
 MA = LIRE_MAILLAGE(FORMAT="MED", UNITE=20)
 MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(GROUP_MA="{group}"))
 MO0 = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(GROUP_MA="{group}", PHENOMENE="MECANIQUE", MODELISATION="{model}"))
@@ -369,7 +374,7 @@ fn run(types: &[CellType], cases: usize, tag: &str, tol: Tolerance) {
 }
 
 /// The number of cuts: `ASTER_PROPTEST_CASES` or the default.
-fn cases(default: usize) -> usize {
+pub(super) fn cases(default: usize) -> usize {
     std::env::var("ASTER_PROPTEST_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(default)
 }
 

@@ -253,7 +253,7 @@ fn zones(
             let cells = &contact[g];
             let master = xm.masters[g].map(|(m, c)| (xm.lsn[m].as_slice(), c));
             let edges = mortar::cut_edges(mesh, cells, &xm.lsn[g], master);
-            let pk = mortar::vital_edges(&edges);
+            let pk = mortar::vital_edges(&edges, &mortar::islands(mesh, &xm.lsn[g]));
             zones.push(Zone {
                 crack: g,
                 params,
