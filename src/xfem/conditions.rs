@@ -12,8 +12,29 @@ use std::collections::BTreeSet;
 /// A function of the position (the condition's function at the step's time).
 pub type Func<'f> = dyn Fn(&[f64; 3]) -> Result<f64, String> + 'f;
 
-/// The relative offset from a crossing at which a function is sampled on each side.
+/// The relative offset from a crossing at which a function is sampled on each side (`xddlimf`).
 const EPS: f64 = 2e-6;
+
+/// Where crack `g`'s level set changes sign along the mesh edge n–k of a cell (`mid`: the edge's
+/// mid-node on a quadratic cell): the root of its interpolation along the edge, as a fraction of the
+/// segment n–k, on which the function is sampled (`xddlimf` places its samples on the chord).
+fn crossing(xm: &XfemModel, g: usize, n: usize, k: usize, mid: Option<usize>) -> f64 {
+    super::mortar::edge_root(xm.lsn[g][n], xm.lsn[g][k], mid.map(|m| xm.lsn[g][m]))
+}
+
+/// Whether `f` jumps across the crossing at fraction `t` of the segment from `xn` to `xk`, told by its
+/// own values: the differences across the crossing at two offsets, 2e-6 and 2.5e-7 of the segment's
+/// parts, fall by the ratio of the offsets for a function continuous there (smooth or kinked) and stay
+/// for a jump. A difference within 1e-10 of the function's values is none. The function is never
+/// evaluated on the crossing itself, where a function defined on each side may be defined on neither.
+fn jumps_at(f: &Func, xn: &[f64; 3], xk: &[f64; 3], t: f64) -> Result<bool, String> {
+    let at = |s: f64| -> [f64; 3] { [0, 1, 2].map(|i| xn[i] + s * (xk[i] - xn[i])) };
+    let across = |e: f64| -> Result<(f64, f64), String> { Ok((f(&at(t * (1.0 - e)))?, f(&at(t + e * (1.0 - t)))?)) };
+    let ((w0, w1), (n0, n1)) = (across(EPS)?, across(EPS / 8.0)?);
+    let (wide, narrow) = (w1 - w0, n1 - n0);
+    let scale = [f(xn)?, f(xk)?, w0, w1].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    Ok(narrow.abs() > 0.5 * wide.abs() && narrow.abs() > 1e-10 * scale)
+}
 
 /// The Heaviside parts of node `n` under a function-valued DDL_IMPO of the
 /// node set `same` (`xddlimf`): along each mesh edge from `n` to another
@@ -23,9 +44,10 @@ const EPS: f64 = 2e-6;
 /// edge, with a_n = f(x_n), a_k = f(x_k). A set not reached this way gets
 /// h = 0 when the function is continuous across the crossings of `n`, and
 /// otherwise Code_Aster's point relation ([`point_relation`]) when a node of
-/// the set's region belongs to the condition around `n` (nothing if none). A
-/// quadratic edge is handled when the function is continuous across the
-/// crossing (then h = 0); a discontinuous one stops the run.
+/// the set's region belongs to the condition around `n` (nothing if none).
+/// Where the function is continuous across the crossing, which its own
+/// values tell ([`jumps_at`]), h = 0 on every edge; a discontinuous one on a
+/// quadratic edge stops the run.
 pub fn trace_sets(
     mesh: &Mesh,
     xm: &XfemModel,
@@ -56,11 +78,11 @@ pub fn trace_sets(
             }
             // The first crack that changes sign along the edge.
             let Some(g) = (0..xm.lsn.len()).find(|&g| xm.lsn[g][n] * xm.lsn[g][k] < 0.0) else { continue };
-            let alpha = xm.lsn[g][n] / (xm.lsn[g][n] - xm.lsn[g][k]);
+            let quadratic = ct.nnodes() > ct.nvertices();
+            let alpha = crossing(xm, g, n, k, quadratic.then(|| nodes[e[2]]));
             let (xn, xk) = (mesh.coords[n], mesh.coords[k]);
             let at = |s: f64| -> [f64; 3] { [0, 1, 2].map(|i| xn[i] + s * (xk[i] - xn[i])) };
             let beyond = at(alpha + EPS * (1.0 - alpha));
-            let before = at(alpha * (1.0 - EPS));
             // Region just beyond the crossing, from the cell's nodal level sets.
             let xi = inverse_map(
                 ct,
@@ -73,18 +95,17 @@ pub fn trace_sets(
             let ff = shape(ct, &xi);
             let region = region_code(&point_signs(&xm.lsn, &xm.masters, nodes, &ff, &[], &[]));
             let Some(j) = xm.node_sets[n].iter().position(|&r| r == region) else { continue };
-            let (fn_, fk, fc) = (eval(&xn)?, eval(&xk)?, eval(&beyond)?);
-            let quadratic = ct.nnodes() > ct.nvertices();
-            let fb = eval(&before)?;
-            let discontinuous = (fc - fb).abs() > 1e-9 * fc.abs().max(fb.abs()).max(1e-300);
-            let h = if quadratic {
-                if discontinuous {
-                    return Err(
-                        "a function discontinuous across the interface on a quadratic edge is not supported yet".into(),
-                    );
-                }
+            let h = if !jumps_at(eval, &xn, &xk, alpha)? {
+                // Continuous across the crossing: the trace matches it on both sides with no jump (the
+                // value just beyond, which `xddlimf` matches on a linear edge, differs from the linear
+                // trace by the function's change over the offset: 1e-6 of it for a linear function).
                 0.0
+            } else if quadratic {
+                return Err(
+                    "a function discontinuous across the interface on a quadratic edge is not supported yet".into()
+                );
             } else {
+                let (fn_, fk, fc) = (eval(&xn)?, eval(&xk)?, eval(&beyond)?);
                 // The value the field takes with ψ = 2, turned to the node's ψ (−2 on some nodes).
                 ((fc - alpha * fk) / (2.0 * (1.0 - alpha)) - fn_ / 2.0) * 2.0 / xm.psi(n, j, region)
             };
@@ -125,6 +146,7 @@ pub fn function_jumps(mesh: &Mesh, xm: &XfemModel, same: &BTreeSet<usize>, f: &F
         if ct.dim() != mesh.dim {
             continue;
         }
+        let quadratic = ct.nnodes() > ct.nvertices();
         for e in super::levelset::edges(ct) {
             let (n, k) = (nodes[e[0]], nodes[e[1]]);
             if !same.contains(&n) || !same.contains(&k) {
@@ -134,12 +156,8 @@ pub fn function_jumps(mesh: &Mesh, xm: &XfemModel, same: &BTreeSet<usize>, f: &F
                 if xm.lsn[g][n] * xm.lsn[g][k] >= 0.0 {
                     continue;
                 }
-                let alpha = xm.lsn[g][n] / (xm.lsn[g][n] - xm.lsn[g][k]);
-                let (xn, xk) = (mesh.coords[n], mesh.coords[k]);
-                let at = |s: f64| -> [f64; 3] { [0, 1, 2].map(|i| xn[i] + s * (xk[i] - xn[i])) };
-                let fa = f(&at(alpha * (1.0 - EPS)))?;
-                let fb = f(&at(alpha + EPS * (1.0 - alpha)))?;
-                if (fa - fb).abs() > 1e-9 * fa.abs().max(fb.abs()).max(1e-300) {
+                let alpha = crossing(xm, g, n, k, quadratic.then(|| nodes[e[2]]));
+                if jumps_at(f, &mesh.coords[n], &mesh.coords[k], alpha)? {
                     return Ok(true);
                 }
             }
