@@ -646,6 +646,29 @@ pub fn jacobian_inverse(j: &[[f64; 3]; 3], dim: usize) -> (f64, Option<[[f64; 3]
     (det, (det != 0.0 && finite).then_some(inv))
 }
 
+/// Shape gradients in real coordinates of a parent cell at ξ, and |det J|.
+pub fn real_gradients(t: CellType, coords: &[[f64; 3]], xi: &[f64; 3]) -> Option<(Vec<f64>, Vec<[f64; 3]>, f64)> {
+    let nno = t.nnodes();
+    let dim = t.dim();
+    let mut n = vec![0.0; nno];
+    let mut dref = vec![[0.0; 3]; nno];
+    shape_and_deriv(t, xi, &mut n, &mut dref);
+    let j = jacobian(t, coords, xi);
+    let (det, ij) = jacobian_inverse(&j, dim);
+    let ij = ij?;
+    let g = dref
+        .iter()
+        .map(|d| {
+            let mut r = [0.0; 3];
+            for (i, ri) in r.iter_mut().enumerate().take(dim) {
+                *ri = (0..dim).map(|k| d[k] * ij[k][i]).sum();
+            }
+            r
+        })
+        .collect();
+    Some((n, g, det.abs()))
+}
+
 /// JᵀJ restricted to the first `dim` reference directions (zero elsewhere).
 fn gram(j: &Matrix3<f64>, dim: usize) -> Matrix3<f64> {
     Matrix3::from_fn(|a, b| if a < dim && b < dim { j.column(a).dot(&j.column(b)) } else { 0.0 })

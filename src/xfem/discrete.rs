@@ -12,6 +12,7 @@
 use super::model::XfemModel;
 use crate::fem::dofs::DofMap;
 use crate::fem::quadrature::{aster_rule, gauss_legendre, rule_for_degree, QuadratureRule, RefDomain};
+pub use crate::fem::reference::real_gradients;
 use crate::fem::reference::{jacobian, jacobian_inverse, shape, shape_and_deriv};
 use crate::mesh::{CellType, Mesh};
 use nalgebra::Vector3;
@@ -129,29 +130,6 @@ fn b_col(ndim: usize, g: &[f64; 3], i: usize) -> [f64; 6] {
         }
     }
     b
-}
-
-/// Shape gradients in real coordinates of a parent cell at ξ, and |det J|.
-pub fn real_gradients(t: CellType, coords: &[[f64; 3]], xi: &[f64; 3]) -> Option<(Vec<f64>, Vec<[f64; 3]>, f64)> {
-    let nno = t.nnodes();
-    let dim = t.dim();
-    let mut n = vec![0.0; nno];
-    let mut dref = vec![[0.0; 3]; nno];
-    shape_and_deriv(t, xi, &mut n, &mut dref);
-    let j = jacobian(t, coords, xi);
-    let (det, ij) = jacobian_inverse(&j, dim);
-    let ij = ij?;
-    let g = dref
-        .iter()
-        .map(|d| {
-            let mut r = [0.0; 3];
-            for (i, ri) in r.iter_mut().enumerate().take(dim) {
-                *ri = (0..dim).map(|k| d[k] * ij[k][i]).sum();
-            }
-            r
-        })
-        .collect();
-    Some((n, g, det.abs()))
 }
 
 /// Bulk integration rule of sub-cells (`XINT`): 12 points (degree 6) on a

@@ -7,6 +7,7 @@
 //! codes of nodes over a list of cracks (`xlsjon`, `xcalc_code`) are here.
 
 pub mod conditions;
+pub mod cutting;
 pub mod czm;
 pub mod discrete;
 pub mod levelset;

@@ -377,7 +377,7 @@ impl XfemModel {
                 }
                 let mut deriv: f64 = 0.0;
                 for xi in &pts {
-                    if let Some((_, g, _)) = super::discrete::real_gradients(t, &coords, xi) {
+                    if let Some((_, g, _)) = crate::fem::reference::real_gradients(t, &coords, xi) {
                         deriv = g[loc][..dim].iter().fold(deriv, |m, v| m.max(v.abs()));
                     }
                 }

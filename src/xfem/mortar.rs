@@ -61,8 +61,8 @@
 //! vital edges form a *packet*: one set of interface unknowns per packet.
 
 use crate::mesh::Mesh;
+use crate::xfem::cutting::dist;
 use crate::xfem::levelset::{edges, Status};
-use crate::xfem::topose::dist;
 use std::collections::BTreeMap;
 
 /// A cut parent edge: its two end nodes (mesh indices, in the order of the

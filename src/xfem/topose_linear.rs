@@ -9,7 +9,7 @@
 //! vertices, the junction skip for a branch. Intersection points are merged
 //! over the whole parent and stored in creation order (`PINTTO`).
 //!
-//! The result uses the types of [`crate::xfem::topose`]: point ids 1..=nno
+//! The result uses the types of [`crate::xfem::cutting`]: point ids 1..=nno
 //! for the parent's nodes (Code_Aster local order) and 1000+k for the
 //! intersection points (there are no mid-points or centre nodes); the
 //! sub-cells are TRIA3 / TETRA4 in Code_Aster's local order, first child in
@@ -22,8 +22,8 @@
 
 use crate::fem::reference::{map_to_real, node_coords, shape, shape_and_deriv};
 use crate::mesh::CellType;
-use crate::xfem::topose::Wp::{self, Inter as I, Node as N};
-use crate::xfem::topose::{
+use crate::xfem::cutting::Wp::{self, Inter as I, Node as N};
+use crate::xfem::cutting::{
     dist, loncar, master_chain, prism_split, vertex_and_ends, CrackInCell, CutPoint, Cutting, Inter, PointId, Pt,
     SubCell, V3,
 };

@@ -367,8 +367,7 @@ fn cycles(files: &[(Vec<String>, String)]) -> Vec<Vec<String>> {
 fn no_import_cycles() {
     // The cycles left from before this check, being broken; the list only shrinks (a cycle that is gone
     // must leave it, so it cannot come back unseen).
-    const LEFT: &[&[&str]] =
-        &[&["src/xfem/discrete", "src/xfem/model"], &["src/xfem/topose", "src/xfem/topose_linear"]];
+    const LEFT: &[&[&str]] = &[];
     let files = sources(&root().join("src"));
     let mut c = cycles(&files);
     for left in LEFT {

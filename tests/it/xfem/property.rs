@@ -514,7 +514,7 @@ fn linear_cells_with_jumps_prescribed_where_the_interface_meets_the_boundary() {
 /// TETRA10 parents are their own single sub-cell in TOPOSE): interfaces through a row of vertices (the
 /// diagonal X + Y (+ Z) = L), 1e-5·h, 1e-6·h and 1e-7·h from it (where `xajuls` snaps part of the row:
 /// PENTA15 was 5.5e-7·U off at 1e-6·h and PENTA6 7.9e-9·U at 1e-7·h before the prisms' split was made
-/// conforming, `topose::prism_relabel`) and 1e-3·h from the 1:2 row: every node of the mesh and of the
+/// conforming, `cutting::prism_relabel`) and 1e-3·h from the 1:2 row: every node of the mesh and of the
 /// visual mesh matches the analytic field to 1e-8·U.
 #[test]
 fn simplex_and_prism_cells_near_and_through_nodes() {
