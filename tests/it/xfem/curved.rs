@@ -9,11 +9,9 @@
 //! The seed is printed; `ASTER_PROPTEST_SEED` replays a run and `ASTER_PROPTEST_CASES` scales the
 //! random tests (the default counts are a bounded share of the runs docs/stability.md reports).
 
-use super::property::{cases, scene_on, seed, Rng};
+use super::property::{cases, run_scene, scene_on, seed, Rng};
 use aster::mesh::generate::box_mesh;
 use aster::mesh::{CellType, Mesh};
-use aster::runner::export::Dir;
-use aster::runner::{self, RunOptions};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -35,44 +33,6 @@ fn make_box(dir: &Path, t: CellType, n: usize) -> (PathBuf, Vec<[f64; 3]>, Mesh)
     vertices.dedup();
     let coords = vertices.iter().map(|&v| m.coords[v]).collect();
     (path, coords, m)
-}
-
-/// What one run gave.
-struct Outcome {
-    ok: bool,
-    worst: f64,
-    message: String,
-}
-
-/// Run the command file `text` on the mesh at `mesh` (unit 20) in `dir/tag`: OK with every check of
-/// the scene passing, and the worst ANALYTIQUE error.
-fn run_scene(dir: &Path, mesh: &Path, text: &str, tag: &str, expected: usize) -> Outcome {
-    let comm = dir.join(format!("{tag}.comm"));
-    std::fs::write(&comm, text).unwrap();
-    let out = dir.join(tag);
-    let opts = RunOptions { out_dir: Some(out.clone()), units: vec![(20, mesh.to_path_buf(), Dir::In)], echo: false };
-    let o = runner::run_comm(&comm, &opts);
-    let resu = std::fs::read_to_string(out.join(format!("{tag}.resu"))).unwrap_or_default();
-    let mut worst = 0.0f64;
-    for l in resu.lines() {
-        let w: Vec<&str> = l.split_whitespace().collect();
-        if w.len() >= 5 && w[1] == "ANALYTIQUE" {
-            if let Ok(v) = w[4].parse::<f64>() {
-                worst = worst.max(v.abs());
-            }
-        }
-    }
-    let ok = o.diagnostic == "OK" && o.ok_count() == expected && o.nook_count() == 0;
-    let message = format!(
-        "{} ({} OK, {} NOOK) {}",
-        o.diagnostic,
-        o.ok_count(),
-        o.nook_count(),
-        o.error.unwrap_or_default().lines().next().unwrap_or("")
-    );
-    let _ = std::fs::remove_dir_all(&out);
-    let _ = std::fs::remove_file(&comm);
-    Outcome { ok, worst, message }
 }
 
 /// The level set of a circle or sphere as a Python expression of X, Y (, Z).

@@ -329,36 +329,14 @@ fn run(types: &[CellType], cases: usize, tag: &str, tol: Tolerance) {
             continue;
         };
         along += usize::from(class == Class::AlongRow);
-        let comm = dir.join(format!("cut{i}.comm"));
-        std::fs::write(&comm, scene(dim, &phi, tol)).unwrap();
-        let out = dir.join(format!("cut{i}"));
-        let opts = RunOptions { out_dir: Some(out.clone()), units: vec![(20, path.clone(), Dir::In)], echo: false };
-        let o = runner::run_comm(&comm, &opts);
-        let resu = std::fs::read_to_string(out.join(format!("cut{i}.resu"))).unwrap_or_default();
-        for l in resu.lines() {
-            let w: Vec<&str> = l.split_whitespace().collect();
-            if w.len() >= 5 && w[1] == "ANALYTIQUE" {
-                if let Ok(v) = w[4].parse::<f64>() {
-                    if v.abs() > worst {
-                        worst = v.abs();
-                        worst_cut = format!("{} {label}: phi = {phi}", t.name());
-                    }
-                }
-            }
+        let o = run_scene(&dir, path, &scene(dim, &phi, tol), &format!("cut{i}"), 2 * 2 * 2 * dim);
+        if o.worst > worst {
+            worst = o.worst;
+            worst_cut = format!("{} {label}: phi = {phi}", t.name());
         }
-        let expected = 2 * 2 * 2 * dim;
-        if o.diagnostic != "OK" || o.ok_count() != expected || o.nook_count() > 0 {
-            failures.push(format!(
-                "{} {label} ({class:?}, tolerance {tol:e}·U): phi = {phi}: {} ({} OK, {} NOOK) {}",
-                t.name(),
-                o.diagnostic,
-                o.ok_count(),
-                o.nook_count(),
-                o.error.unwrap_or_default().lines().next().unwrap_or("")
-            ));
+        if !o.ok {
+            failures.push(format!("{} {label} ({class:?}, tolerance {tol:e}·U): phi = {phi}: {}", t.name(), o.message));
         }
-        let _ = std::fs::remove_dir_all(&out);
-        let _ = std::fs::remove_file(&comm);
         count += 1;
     }
     let _ = std::fs::remove_dir_all(&dir);
@@ -371,6 +349,44 @@ fn run(types: &[CellType], cases: usize, tag: &str, tol: Tolerance) {
         failures.len()
     );
     assert!(failures.is_empty(), "seed {seed} (replay with ASTER_PROPTEST_SEED={seed}):\n{}", failures.join("\n"));
+}
+
+/// What one run gave.
+pub(super) struct Outcome {
+    pub(super) ok: bool,
+    pub(super) worst: f64,
+    pub(super) message: String,
+}
+
+/// Run the command file `text` on the mesh at `mesh` (unit 20) in `dir/tag`: OK with every check of
+/// the scene passing, and the worst ANALYTIQUE error.
+pub(super) fn run_scene(dir: &Path, mesh: &Path, text: &str, tag: &str, expected: usize) -> Outcome {
+    let comm = dir.join(format!("{tag}.comm"));
+    std::fs::write(&comm, text).unwrap();
+    let out = dir.join(tag);
+    let opts = RunOptions { out_dir: Some(out.clone()), units: vec![(20, mesh.to_path_buf(), Dir::In)], echo: false };
+    let o = runner::run_comm(&comm, &opts);
+    let resu = std::fs::read_to_string(out.join(format!("{tag}.resu"))).unwrap_or_default();
+    let mut worst = 0.0f64;
+    for l in resu.lines() {
+        let w: Vec<&str> = l.split_whitespace().collect();
+        if w.len() >= 5 && w[1] == "ANALYTIQUE" {
+            if let Ok(v) = w[4].parse::<f64>() {
+                worst = worst.max(v.abs());
+            }
+        }
+    }
+    let ok = o.diagnostic == "OK" && o.ok_count() == expected && o.nook_count() == 0;
+    let message = format!(
+        "{} ({} OK, {} NOOK) {}",
+        o.diagnostic,
+        o.ok_count(),
+        o.nook_count(),
+        o.error.unwrap_or_default().lines().next().unwrap_or("")
+    );
+    let _ = std::fs::remove_dir_all(&out);
+    let _ = std::fs::remove_file(&comm);
+    Outcome { ok, worst, message }
 }
 
 /// The number of cuts: `ASTER_PROPTEST_CASES` or the default.
