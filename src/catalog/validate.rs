@@ -364,19 +364,24 @@ impl<'a> Level<'a> {
         }
         let mut out = Vec::with_capacity(n);
         for item in &items {
-            let val = s.types.iter().find_map(|t| convert(t, item)).ok_or_else(|| {
-                let want: Vec<String> = s.types.iter().map(type_desc).collect();
-                self.err(
-                    format!(
-                        "keyword '{}' expects {}, got {} {}",
-                        s.name,
-                        want.join(" or "),
-                        item.type_name(),
-                        short_repr(item)
-                    ),
-                    span,
-                )
-            })?;
+            let val = s
+                .types
+                .iter()
+                .find_map(|t| convert(t, item))
+                .or_else(|| s.types.iter().find_map(|t| integral(t, item)))
+                .ok_or_else(|| {
+                    let want: Vec<String> = s.types.iter().map(type_desc).collect();
+                    self.err(
+                        format!(
+                            "keyword '{}' expects {}, got {} {}",
+                            s.name,
+                            want.join(" or "),
+                            item.type_name(),
+                            short_repr(item)
+                        ),
+                        span,
+                    )
+                })?;
             if let Some(allowed) = &s.allowed {
                 if !allowed.iter().any(|a| val_eq_lit(&val, a)) {
                     let list: Vec<String> = allowed.iter().map(|a| a.to_string()).collect();
@@ -576,6 +581,16 @@ fn val_eq_lit(v: &Val, l: &Lit) -> bool {
         (Val::R(a), Lit::R(b)) => a == b,
         (Val::I(a), Lit::R(b)) | (Val::R(b), Lit::I(a)) => *a as f64 == *b,
         _ => false,
+    }
+}
+
+/// A float equal to its integer part given to an integer keyword: Code_Aster's syntax checker takes it as
+/// that integer (tried only when no declared type takes the value as it is, so a keyword of integers or
+/// reals keeps a real).
+fn integral(t: &Ty, v: &Value) -> Option<Val> {
+    match (t, v) {
+        (Ty::I, Value::Float(f)) if f.fract() == 0.0 && f.abs() < 9.0e15 => Some(Val::I(*f as i64)),
+        _ => None,
     }
 }
 

@@ -232,13 +232,14 @@ impl IsoElastic {
     }
 
     /// The (λ, μ) of the in-plane law actually used by `m`: plane stress
-    /// replaces λ by λ* = 2λμ / (λ + 2μ) = Eν / (1 - ν²).
+    /// replaces λ by λ* = 2λμ / (λ + 2μ) = Eν / (1 - ν²), computed from E and ν
+    /// so that an incompressible material (ν = 0.5, λ = ∞) stays finite there.
     fn effective_lame(&self, m: Modelisation) -> (f64, f64) {
-        let (l, mu) = self.lame();
         if m == Modelisation::CPlan {
-            (2.0 * l * mu / (l + 2.0 * mu), mu)
+            let mu = self.e / (2.0 * (1.0 + self.nu));
+            (self.e * self.nu / (1.0 - self.nu * self.nu), mu)
         } else {
-            (l, mu)
+            self.lame()
         }
     }
 
@@ -420,6 +421,17 @@ pub fn rigi_rule(t: CellType) -> QuadratureRule {
     family_rule(t, Family::Rigi)
 }
 
+/// The `RIGI` rule of the element of modelisation `m` on `t`: [`rigi_rule`], but FPG6 on the
+/// axisymmetric TRIA6 (`MEAXTR6` of `meca_axis.py`, where the plane TRIA6 elements take FPG3).
+pub fn rigi_rule_of(m: Modelisation, t: CellType) -> QuadratureRule {
+    match (m, t) {
+        (Modelisation::Axis, CellType::Tria6) => {
+            crate::fem::quadrature::aster_rule(t, "FPG6").expect("FPG6 is a TRIA6 family")
+        }
+        _ => rigi_rule(t),
+    }
+}
+
 /// `RIGI` rule of the skin (boundary) elements carrying surface loads:
 /// SEG2 FPG2, SEG3 FPG4, TRIA3 FPG3, TRIA6 FPG6, QUAD4 FPG4, QUAD8/9 FPG9
 /// (Code_Aster `meca_2d_skin.py`, `MECA_FACE*` of `meca_3d.py`).
@@ -453,7 +465,7 @@ pub fn stiffness(
     if !mat.is_isotropic() {
         return stiffness_general(m, &mat.hooke(m), t, coords);
     }
-    let rule = rigi_rule(t);
+    let rule = rigi_rule_of(m, t);
     let gg = gauss_geometry(m, t, coords, &rule)?;
     let dim = m.dim();
     let nno = t.nnodes();
@@ -536,7 +548,7 @@ fn stiffness_general(
     t: CellType,
     coords: &[[f64; 3]],
 ) -> Result<Vec<f64>, ElementError> {
-    let rule = rigi_rule(t);
+    let rule = rigi_rule_of(m, t);
     let gg = gauss_geometry(m, t, coords, &rule)?;
     let (dim, ns, nno) = (m.dim(), m.nsig(), t.nnodes());
     let nd = nno * dim;
@@ -579,7 +591,7 @@ pub fn stiffness_btdb(
     coords: &[[f64; 3]],
 ) -> Result<Vec<f64>, ElementError> {
     mat.check(m)?;
-    let rule = rigi_rule(t);
+    let rule = rigi_rule_of(m, t);
     let gg = gauss_geometry(m, t, coords, &rule)?;
     let (dim, ns, nno) = (m.dim(), m.nsig(), t.nnodes());
     let nd = nno * dim;
@@ -671,7 +683,7 @@ pub fn gauss_fields(
     u: &[f64],
 ) -> Result<GaussFields, ElementError> {
     mat.check(m)?;
-    let rule = rigi_rule(t);
+    let rule = rigi_rule_of(m, t);
     let gg = gauss_geometry(m, t, coords, &rule)?;
     let nno = t.nnodes();
     assert_eq!(u.len(), nno * m.dim());
@@ -730,8 +742,8 @@ pub fn gauss_to_node_matrix(t: CellType, rule: &QuadratureRule) -> Vec<Vec<f64>>
 
 /// Extrapolate Gauss-point values (first `ncmp` components) of a cell to its
 /// nodes, Code_Aster's way (`*_ELNO` from `*_ELGA` on the `RIGI` family).
-pub fn gauss_to_nodes(t: CellType, values: &[[f64; 6]], ncmp: usize) -> Vec<[f64; 6]> {
-    let rule = rigi_rule(t);
+pub fn gauss_to_nodes(m: Modelisation, t: CellType, values: &[[f64; 6]], ncmp: usize) -> Vec<[f64; 6]> {
+    let rule = rigi_rule_of(m, t);
     assert_eq!(values.len(), rule.len());
     let m = gauss_to_node_matrix(t, &rule);
     m.iter()
@@ -762,7 +774,7 @@ pub fn node_fields(
     u: &[f64],
 ) -> Result<NodeFields, ElementError> {
     let g = gauss_fields(m, mat, t, coords, u)?;
-    Ok((gauss_to_nodes(t, &g.eps, m.nsig()), gauss_to_nodes(t, &g.sig, m.nsig())))
+    Ok((gauss_to_nodes(m, t, &g.eps, m.nsig()), gauss_to_nodes(m, t, &g.sig, m.nsig())))
 }
 
 // ---------------------------------------------------------------------------
@@ -778,7 +790,7 @@ pub fn body_force(
     coords: &[[f64; 3]],
     f: &dyn Fn(&[f64; 3]) -> [f64; 3],
 ) -> Result<Vec<f64>, ElementError> {
-    let rule = rigi_rule(t);
+    let rule = rigi_rule_of(m, t);
     let gg = gauss_geometry(m, t, coords, &rule)?;
     let (dim, nno) = (m.dim(), t.nnodes());
     let mut v = vec![0.0; nno * dim];

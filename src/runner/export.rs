@@ -31,6 +31,8 @@ pub struct FileLine {
     pub path: PathBuf,
     pub dir: Dir,
     pub unit: i64,
+    /// Where the line is: `file.export:N: F type path D unit`, for messages about the file it names.
+    pub origin: String,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -101,7 +103,9 @@ impl Export {
                         .map_err(|_| Error::io(format!("{name}:{}: unit '{}' is not a number", i + 1, fields[3])))?;
                     let p = Path::new(fields[1]);
                     let path = if p.is_absolute() { p.to_path_buf() } else { base.join(p) };
-                    ex.files.push(FileLine { kind: fields[0].to_string(), path, dir, unit });
+                    let origin =
+                        format!("{name}:{}: {}", i + 1, fields.iter().fold("F".to_string(), |s, f| s + " " + f));
+                    ex.files.push(FileLine { kind: fields[0].to_string(), path, dir, unit, origin });
                 }
                 Some("A") | Some("N") => {}
                 Some(other) => {

@@ -118,6 +118,15 @@ pub fn run_export(path: &Path, opts: &RunOptions) -> Outcome {
         Ok(e) => e,
         Err(e) => return Outcome::failed(&name, e.kind, e.msg),
     };
+    // A data file the .export names must exist: say which line names it.
+    if let Some(f) = ex.files.iter().find(|f| f.dir != Dir::Out && !f.path.exists()) {
+        let what = if f.kind == "comm" { "command file" } else { "data file" };
+        return Outcome::failed(
+            &name,
+            ErrorKind::Io,
+            format!("unit {}: {what} {} does not exist (named by {})", f.unit, f.path.display(), f.origin),
+        );
+    }
     let comms = ex.comm_files();
     let comm = match comms.as_slice() {
         [one] => one.path.clone(),
@@ -268,8 +277,9 @@ fn run_text(
             }
         }
     }
+    let alarms = alarm_count(&session.mess);
     let summary = format!(
-        "\n checks: {} OK, {} NOOK, {} skipped    elapsed {:.3} s\n DIAGNOSTIC JOB : {diagnostic}\n",
+        "{alarms}\n checks: {} OK, {} NOOK, {} skipped    elapsed {:.3} s\n DIAGNOSTIC JOB : {diagnostic}\n",
         session.records.iter().filter(|r| r.ok == Some(true)).count(),
         session.records.iter().filter(|r| r.ok == Some(false)).count(),
         session.records.iter().filter(|r| r.ok.is_none()).count(),
@@ -296,6 +306,27 @@ fn run_text(
         seconds: t0.elapsed().as_secs_f64(),
         timings: session.timings.clone(),
     }
+}
+
+/// The end-of-run count of the alarms (`<A>` lines) of a message file, by Code_Aster identifier where
+/// the alarm names one (`<A> <MODELE1_3> ...`); empty without alarm.
+pub fn alarm_count(mess: &str) -> String {
+    let mut total = 0;
+    let mut by_id: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
+    for line in mess.lines() {
+        let Some(rest) = line.trim_start().strip_prefix("<A>") else { continue };
+        total += 1;
+        let id = rest.trim_start().strip_prefix('<').and_then(|r| r.split_once('>')).map(|(id, _)| id);
+        *by_id.entry(id.unwrap_or("")).or_default() += 1;
+    }
+    if total == 0 {
+        return String::new();
+    }
+    let parts: Vec<String> = by_id
+        .iter()
+        .map(|(id, n)| if id.is_empty() { format!("{n} of aster-rs") } else { format!("{id} x{n}") })
+        .collect();
+    format!("\n <A> {total} alarm(s) in this run: {}\n", parts.join(", "))
 }
 
 /// `aster check`: parse and validate every command call, computing nothing.

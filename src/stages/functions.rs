@@ -570,34 +570,74 @@ fn numeric_blocks(text: &str, sep: Option<&str>) -> Vec<Vec<Vec<f64>>> {
 
 pub fn lire_fonction(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let ty = a.text("TYPE").unwrap_or("FONCTION");
-    if ty != "FONCTION" {
+    if ty == "FONCTION_C" {
         return Err(a.err("TYPE", format!("TYPE='{ty}' is not supported yet")));
     }
     let unit = a.int("UNITE").ok_or_else(|| a.err("UNITE", "a unit is required"))?;
     let text = ctx.io.read_unit(unit).map_err(|e| e.at(a.span_of("UNITE")))?;
     let blocks = numeric_blocks(&text, a.text("SEPARATEUR"));
-    let pick = |kw: &str| -> Result<Vec<f64>> {
-        let ind = a.ints(kw);
+    // The column (block, column) that keyword `kw` of occurrence `o` names.
+    let pick = |o: &Args, kw: &str| -> Result<Vec<f64>> {
+        let ind = o.ints(kw);
         let (b, c) = (ind[0], ind[1]);
         let block = blocks.get((b - 1).max(0) as usize).filter(|_| b >= 1).ok_or_else(|| {
-            a.err(kw, format!("unit {unit} has {} block(s) of numbers, block {b} requested", blocks.len()))
+            o.err(kw, format!("unit {unit} has {} block(s) of numbers, block {b} requested", blocks.len()))
         })?;
         block
             .iter()
             .enumerate()
             .map(|(i, row)| {
                 row.get((c - 1).max(0) as usize).copied().filter(|_| c >= 1).ok_or_else(|| {
-                    a.err(kw, format!("line {} of block {b} has {} column(s), column {c} requested", i + 1, row.len()))
+                    o.err(kw, format!("line {} of block {b} has {} column(s), column {c} requested", i + 1, row.len()))
                 })
             })
             .collect()
     };
-    let x = pick("INDIC_PARA")?;
-    let y = pick("INDIC_RESU")?;
+    let sorted = |x: Vec<f64>, y: Vec<f64>| if a.text("VERIF") == Some("NON") { sort_pairs(x, y) } else { (x, y) };
+    if ty == "NAPPE" {
+        // As Code_Aster's macro: the functions share the abscissas of INDIC_ABSCISSE, one ordinate column each
+        // (DEFI_FONCTION), and the nappe's parameter values are the column INDIC_PARA.
+        let xs = pick(a, "INDIC_ABSCISSE")?;
+        let nom_para_fonc = a.req_text("NOM_PARA_FONC")?;
+        let mut functions = Vec::new();
+        for occ in a.facts("DEFI_FONCTION") {
+            let y = pick(occ, "INDIC_RESU")?;
+            if y.len() != xs.len() {
+                return Err(occ.err("INDIC_RESU", "the abscissa and ordinate columns differ in length"));
+            }
+            let (x, y) = sorted(xs.clone(), y);
+            let f = Function::new(
+                nom_para_fonc,
+                a.text("NOM_RESU").unwrap_or("TOUTRESU"),
+                x,
+                y,
+                interp_of(a, "INTERPOL_FONC", (Interp::Lin, Interp::Lin)),
+                prol_of(a, "PROL_GAUCHE_FONC", Prol::Exclu),
+                prol_of(a, "PROL_DROITE_FONC", Prol::Exclu),
+            )
+            .map_err(|e| e.at(occ.span))?;
+            functions.push(f);
+        }
+        let params = pick(a, "INDIC_PARA")?;
+        let n = Nappe::new(
+            a.req_text("NOM_PARA")?,
+            nom_para_fonc,
+            a.text("NOM_RESU").unwrap_or("TOUTRESU"),
+            params,
+            functions,
+            interp_of(a, "INTERPOL", (Interp::Lin, Interp::Lin)),
+            prol_of(a, "PROL_GAUCHE", Prol::Exclu),
+            prol_of(a, "PROL_DROITE", Prol::Exclu),
+        )
+        .map_err(|e| e.at(a.span))?;
+        return Ok(Some(ConceptData::Nappe(n)));
+    }
+    let x = pick(a, "INDIC_PARA")?;
+    let y = pick(a, "INDIC_RESU")?;
     if x.len() != y.len() {
         return Err(a.err("INDIC_RESU", "the parameter and result columns differ in length"));
     }
-    let (x, y) = if a.text("VERIF") == Some("NON") { sort_pairs(x, y) } else { (x, y) };
+    let (x, y) = sorted(x, y);
     Ok(Some(ConceptData::Function(function_from(a, None, x, y)?)))
 }
 

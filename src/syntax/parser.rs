@@ -81,6 +81,15 @@ fn from_pest(src: &str, text: &str, e: pest::error::Error<Rule>) -> SyntaxError 
     if let Some(open) = super::lexer::unclosed_bracket(text, offset) {
         let (l, c) = super::lexer::line_col(src, offset);
         let (lo, _) = super::lexer::line_col(src, open);
+        // A file cut in the middle of a call ends inside the bracket, maybe on the bracket's own line.
+        let at_end = text[offset.min(text.len())..].trim().is_empty();
+        if at_end {
+            let ch = &text[open..open + 1];
+            return SyntaxError {
+                offset: open,
+                message: format!("invalid syntax: '{ch}' is never closed (the file ends at line {l}, column {c})"),
+            };
+        }
         if l > lo {
             let ch = &text[open..open + 1];
             return SyntaxError {

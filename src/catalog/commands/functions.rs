@@ -255,7 +255,21 @@ pub fn commands() -> Vec<Command> {
                     simp("NOM_PARA").txt().o(),
                     simp("NOM_RESU").txt().d("TOUTRESU"),
                     simp("INDIC_PARA").i().min(2).max(2).dv(vec![Lit::I(1), Lit::I(1)]),
-                    simp("INDIC_RESU").i().min(2).max(2).dv(vec![Lit::I(1), Lit::I(2)]),
+                    bloc(
+                        eq("TYPE", "FONCTION"),
+                        kws![simp("INDIC_RESU").i().min(2).max(2).dv(vec![Lit::I(1), Lit::I(2)])]
+                    ),
+                    bloc(
+                        eq("TYPE", "NAPPE"),
+                        kws![
+                            simp("NOM_PARA_FONC").txt().o(),
+                            simp("INDIC_ABSCISSE").i().min(2).max(2).o(),
+                            simp("INTERPOL_FONC").txt().max(2).one_of(&["LIN", "LOG"]).d("LIN"),
+                            simp("PROL_DROITE_FONC").txt().one_of(PROL).d("EXCLU"),
+                            simp("PROL_GAUCHE_FONC").txt().one_of(PROL).d("EXCLU"),
+                            fact("DEFI_FONCTION", kws![simp("INDIC_RESU").i().min(2).max(2).o()]).many(),
+                        ]
+                    ),
                     simp("VERIF").txt().one_of(&["CROISSANT", "NON"]).d("CROISSANT"),
                     simp("TITRE").txt().many(),
                     simp("INFO").i().one_of_i(&[1, 2]).d(1),

@@ -106,9 +106,10 @@ pub fn commands() -> Vec<Command> {
                             "UNIQUE",
                         ]),
                         bloc(eq("OPERATION", "FILTRE"), filter_keywords()),
+                        bloc(is_in("OPERATION", &["EXTR", "SUPPRIME"]), kws![simp("NOM_PARA").txt().many().o()]),
                         bloc(
-                            is_in("OPERATION", &["EXTR", "SUPPRIME", "UNIQUE"]),
-                            kws![simp("NOM_PARA").txt().many().o()]
+                            eq("OPERATION", "UNIQUE"),
+                            kws![simp("NOM_PARA").txt().many().o(), simp("FORMAT_R").txt()]
                         ),
                         bloc(eq("OPERATION", "RENOMME"), kws![simp("NOM_PARA").txt().min(2).max(2).o()]),
                         bloc(

@@ -101,7 +101,54 @@ pub fn siro_elem(p: &Problem, model: &ConceptRef, depl: &[f64], only: &dyn Fn(&u
 
 // ------------------------------------------------------------------ CALC_CHAMP
 
-pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+/// The steps CALC_CHAMP is asked for.
+enum Asked {
+    All,
+    Orders(Vec<i64>),
+    /// What the result lacks (`order 3`, `instant 2.5`).
+    Missing(String),
+}
+
+/// NUME_ORDRE / LIST_ORDRE / INST / LIST_INST (CRITERE, PRECISION) against the steps of the result.
+fn asked_orders(a: &Args, steps: &[crate::concepts::result::Step]) -> Result<Asked> {
+    let list = |kw: &str| -> Result<Option<Vec<f64>>> {
+        a.concept(kw).map(|c| c.reals().map_err(|e| a.err(kw, e.msg))).transpose()
+    };
+    let orders: Option<Vec<i64>> = if a.has("NUME_ORDRE") {
+        Some(a.ints("NUME_ORDRE"))
+    } else {
+        list("LIST_ORDRE")?.map(|v| v.iter().map(|&x| x as i64).collect())
+    };
+    if let Some(orders) = orders {
+        let missing: Vec<String> =
+            orders.iter().filter(|n| !steps.iter().any(|s| s.nume_ordre == **n)).map(|n| n.to_string()).collect();
+        return Ok(if missing.is_empty() {
+            Asked::Orders(orders)
+        } else {
+            Asked::Missing(format!("order {}", missing.join(", ")))
+        });
+    }
+    let times = if a.has("INST") { Some(a.reals("INST")) } else { list("LIST_INST")? };
+    let Some(times) = times else { return Ok(Asked::All) };
+    let crit = a.text("CRITERE").unwrap_or("RELATIF");
+    let prec = a.real("PRECISION").unwrap_or(1.0e-6);
+    let mut found = Vec::new();
+    let mut missing = Vec::new();
+    for t in times {
+        let tol = if crit == "ABSOLU" { prec } else { prec * t.abs() };
+        match steps.iter().find(|s| (s.inst - t).abs() <= tol) {
+            Some(s) => found.push(s.nume_ordre),
+            None => missing.push(crate::text::float_repr(t)),
+        }
+    }
+    Ok(if missing.is_empty() {
+        Asked::Orders(found)
+    } else {
+        Asked::Missing(format!("instant {} (CRITERE='{crit}', PRECISION={prec})", missing.join(", ")))
+    })
+}
+
+pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     const DONE: &[&str] = &[
         "SIGM_ELNO",
         "SIGM_NOEU",
@@ -159,9 +206,6 @@ pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     a.refuse(&[
         "MODELE",
         "CHAM_MATER",
-        "INST",
-        "LIST_INST",
-        "LIST_ORDRE",
         "FREQ",
         "LIST_FREQ",
         "NUME_MODE",
@@ -170,9 +214,32 @@ pub fn calc_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         "CARA_ELEM",
         "EXCIT",
     ])?;
-    let orders = a.ints("NUME_ORDRE");
+    let _ = a.text("TOUT_ORDRE"); // every step: the default
+    let orders = match asked_orders(a, &steps)? {
+        Asked::All => Vec::new(),
+        Asked::Orders(o) => o,
+        Asked::Missing(what) => {
+            // op0052: a step the result does not have stops the command, with an alarm; the result is unchanged.
+            ctx.io.mess(&format!(
+                " <A> <ALGORITH3_41> CALC_CHAMP: result {} has no {what}: nothing is computed\n",
+                rc.label()
+            ));
+            let r = rc.result()?;
+            let data =
+                ResultData { model: r.model.clone(), material: r.material.clone(), loads: r.loads.clone(), steps };
+            return Ok(Some(ConceptData::Result(data)));
+        }
+    };
     if hm {
-        super::hm::calc_champ_hm(a, &wanted, &mut steps, &model, &chmat, &only, &orders)?;
+        let passed_over = super::hm::calc_champ_hm(a, &wanted, &mut steps, &model, &chmat, &only, &orders)?;
+        if !passed_over.is_empty() {
+            let list: Vec<String> = passed_over.iter().map(|n| n.to_string()).collect();
+            ctx.io.mess(&format!(
+                " <A> CALC_CHAMP: result {} holds no SIEF_ELGA and VARI_ELGA at order {}: nothing is computed there\n",
+                rc.label(),
+                list.join(", ")
+            ));
+        }
         let r = rc.result()?;
         let data = ResultData { model: r.model.clone(), material: r.material.clone(), loads: r.loads.clone(), steps };
         return Ok(Some(ConceptData::Result(data)));

@@ -2,8 +2,9 @@
 //! VARI_ELGA and the displacements, at the integration points of the HM elements and extrapolated to
 //! the nodes as `inmat4`/`inmat6` do (a least-squares fit of the vertex element's functions through the
 //! point values, middle nodes the mean of their edge's ends; at the vertex points of `*_HMD` elements
-//! the point value itself). `*_HMS` elements extrapolate their mechanical components from the Gauss
-//! points and their hydraulic ones from the vertex points.
+//! the point value itself). On `*_HMS` elements SIGM_ELNO and EPSI_ELNO fit through every point of the
+//! RIGI family (Gauss and vertex points, as `te0004` does), while SIEF_ELNO and VARI_ELNO take their
+//! mechanical components from the Gauss points and their hydraulic ones from the vertex points (`posthm`).
 
 use crate::catalog::args::Args;
 use crate::concepts::result::{Field, Step};
@@ -48,24 +49,33 @@ fn gano(cp: &CellPoints, pts: &[usize]) -> Vec<Vec<f64>> {
     gauss_to_node_matrix(cp.cell, &rule)
 }
 
-/// Extrapolate point values (`ncmp` per point) to the nodes of a cell; with `split`, components below
-/// it come from the Gauss points and the others from the vertex points (S elements).
-fn to_nodes(cp: &CellPoints, v: &[f64], ncmp: usize, split: Option<usize>) -> Vec<f64> {
+/// How the point values of a cell go to its nodes.
+#[derive(Clone, Copy)]
+enum Extrapolation {
+    /// Code_Aster's `te0004` on the RIGI family: one fit through every point of the family (on `*_HMS`
+    /// elements the Gauss points and the vertex points, which hold what the element stored there).
+    Rigi,
+    /// `posthm` (SIEF_ELNO, VARI_ELNO): on `*_HMS` elements the components below the split from the
+    /// Gauss points (the MASS family), the others from the vertex points (NOEU_S); every point elsewhere.
+    Split(usize),
+}
+
+/// Extrapolate point values (`ncmp` per point) to the nodes of a cell.
+fn to_nodes(cp: &CellPoints, v: &[f64], ncmp: usize, how: Extrapolation) -> Vec<f64> {
     let npts = cp.points.len();
     let nno = cp.cell.nnodes();
     let mut out = vec![0.0; nno * ncmp];
-    let groups: Vec<(Vec<usize>, std::ops::Range<usize>)> = match (cp.variant, split) {
-        (Variant::Selective, Some(s)) => {
+    let groups: Vec<(Vec<usize>, std::ops::Range<usize>)> = match (cp.variant, how) {
+        (Variant::Selective, Extrapolation::Split(s)) => {
             let ng = npts - cp.cell.nvertices();
-            vec![((0..ng).collect(), 0..s), ((ng..npts).collect(), s..ncmp)]
-        }
-        (Variant::Selective, None) => {
-            let ng = npts - cp.cell.nvertices();
-            vec![((0..ng).collect(), 0..ncmp)]
+            vec![((0..ng).collect(), 0..s.min(ncmp)), ((ng..npts).collect(), s.min(ncmp)..ncmp)]
         }
         _ => vec![((0..npts).collect(), 0..ncmp)],
     };
     for (pts, comps) in groups {
+        if comps.is_empty() {
+            continue;
+        }
         let m = gano(cp, &pts);
         for (node, row) in m.iter().enumerate() {
             for (w, &k) in row.iter().zip(&pts) {
@@ -107,7 +117,7 @@ pub fn calc_champ_hm(
     chmat: &ConceptRef,
     only: &dyn Fn(&usize) -> bool,
     orders: &[i64],
-) -> Result<()> {
+) -> Result<Vec<i64>> {
     if let Some(o) = wanted.iter().find(|o| !OPTIONS.contains(&o.as_str())) {
         return Err(a.err("RESULTAT", format!("option {o} is not supported yet on a saturated HM result")));
     }
@@ -115,8 +125,15 @@ pub fn calc_champ_hm(
     let ns = p.kin.mechanics().nsig();
     let sigma_names: Vec<String> = p.kin.mechanics().sigma_names().iter().map(|s| s.to_string()).collect();
     let eps_names: Vec<String> = p.kin.mechanics().epsilon_names().iter().map(|s| s.to_string()).collect();
+    let mut passed_over = Vec::new();
     for step in steps.iter_mut() {
         if !orders.is_empty() && !orders.contains(&step.nume_ordre) {
+            continue;
+        }
+        // Every order asked for: one without the point fields (an initial state stored without them) is
+        // passed over, as Code_Aster does with an alarm; an order named by NUME_ORDRE must have them.
+        if orders.is_empty() && !(step.fields.contains_key("SIEF_ELGA") && step.fields.contains_key("VARI_ELGA")) {
+            passed_over.push(step.nume_ordre);
             continue;
         }
         let fields = step_fields(&p, step, only, ns)
@@ -196,7 +213,7 @@ pub fn calc_champ_hm(
             step.fields.insert(o.clone(), f);
         }
     }
-    Ok(())
+    Ok(passed_over)
 }
 
 /// The point and node fields of one step.
@@ -249,11 +266,13 @@ fn step_fields(
             return Err(format!("cell {}: the stored fields do not match the model's points", p.mesh.cell_names[c]));
         }
         let sg: Vec<f64> = s.chunks(nsief).flat_map(|x| x[..ns].to_vec()).collect();
-        // σ' (and σ_p) are mechanical; M and w hydraulic.
-        let split = Some(12);
-        out.sigm_elno[c] = Some(to_nodes(cp, &sg, ns, Some(ns)));
-        out.sief_elno[c] = Some(to_nodes(cp, s, nsief, split));
-        out.vari_elno[c] = Some(to_nodes(cp, v, nvari, Some(1)));
+        // SIGM_ELNO is te0004's fit through every point of the RIGI family: on `*_HMS` elements the vertex
+        // points take part with the effective stress they hold (a copy of a Gauss point's). SIEF_ELNO and
+        // VARI_ELNO are posthm's: σ' and σ_p (the first 12 components) and the skeleton's variable (V1)
+        // from the Gauss points, M, w and the fluid's variables from the vertex points.
+        out.sigm_elno[c] = Some(to_nodes(cp, &sg, ns, Extrapolation::Rigi));
+        out.sief_elno[c] = Some(to_nodes(cp, s, nsief, Extrapolation::Split(12)));
+        out.vari_elno[c] = Some(to_nodes(cp, v, nvari, Extrapolation::Split(1)));
         out.sigm_elga[c] = Some(sg);
         // Strains of the displacements at the points (tensorial shear).
         let ue: Vec<f64> = cell
@@ -264,14 +283,17 @@ fn step_fields(
                 depl[n * ncd + components.iter().position(|x| x == p.numbering.components[k]).unwrap_or(k)]
             })
             .collect();
+        // thmCompEpsiElga fills the Gauss points only: the vertex points of an `*_HMS` element keep the
+        // zero the elementary computation starts from, and EPSI_ELNO (te0004) fits through them too.
+        let ngauss = if cp.variant == Variant::Selective { npts - cp.cell.nvertices() } else { npts };
         let mut e = Vec::with_capacity(npts * ns);
-        for pt in &cp.points {
-            let eps = cp.strain(pt, &ue);
+        for (i, pt) in cp.points.iter().enumerate() {
+            let eps = if i < ngauss { cp.strain(pt, &ue) } else { Default::default() };
             for (k, v) in eps.iter().enumerate().take(ns) {
                 e.push(if k >= 3 { 0.5 * v } else { *v });
             }
         }
-        out.epsi_elno[c] = Some(to_nodes(cp, &e, ns, Some(ns)));
+        out.epsi_elno[c] = Some(to_nodes(cp, &e, ns, Extrapolation::Rigi));
         out.epsi_elga[c] = Some(e);
     }
     if out.sigm_elga.iter().all(Option::is_none) {

@@ -22,9 +22,8 @@ use crate::concepts::table::{Cell, ColType, Table};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
 use crate::fem::elasticity::{self, Modelisation};
-use crate::fem::quadrature::aster_rule;
 use crate::fem::reference::{map_to_real, shape};
-use crate::mesh::{CellType, Mesh};
+use crate::mesh::Mesh;
 use crate::stages::core::eval::eval_named;
 use crate::stages::core::problem::elastic_of;
 use crate::stages::Ctx;
@@ -179,8 +178,7 @@ fn points(a: &Args, set: &Setting, c: usize, role: Role) -> Result<Vec<Point>> {
             .collect());
     }
     let rule = match role {
-        Role::Bulk if axis && t == CellType::Tria6 => aster_rule(t, "FPG6").expect("FPG6 on TRIA6"),
-        Role::Bulk => elasticity::rigi_rule(t),
+        Role::Bulk => elasticity::rigi_rule_of(set.md, t),
         Role::Skin => elasticity::boundary_rule(t),
     };
     match role {

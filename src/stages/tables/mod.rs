@@ -475,6 +475,8 @@ pub fn calc_table(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             "CALCUL" => calcul(&t, occ, &name)?,
             "STATISTIQUES" => statistics(&t),
             "UNIQUE" => {
+                // Reals are compared as FORMAT_R writes them, when it is given.
+                let fmt_r = real_format(occ)?;
                 let paras = occ.texts("NOM_PARA");
                 let cols: Vec<usize> = paras
                     .iter()
@@ -485,7 +487,11 @@ pub fn calc_table(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 let mut seen = std::collections::HashSet::new();
                 let rows: Vec<usize> = (0..t.nrows())
                     .filter(|&r| {
-                        seen.insert(cols.iter().map(|&c| format_key(&t.columns[c].cells[r], None)).collect::<Vec<_>>())
+                        seen.insert(
+                            cols.iter()
+                                .map(|&c| format_key(&t.columns[c].cells[r], fmt_r.as_ref()))
+                                .collect::<Vec<_>>(),
+                        )
                     })
                     .collect();
                 t.select_rows(&rows)

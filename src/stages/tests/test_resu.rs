@@ -227,13 +227,14 @@ fn test_field(ctx: &mut Ctx, occ: &Args, kw: &str) -> Result<()> {
                 occ.err("NOM_CMP", format!("field {name} has no component {cmp} ({})", field.components().join(", ")))
             })?;
             let v = locate(field, k, &mesh, occ, &mesh_name)?;
+            // CHAM_NO declares neither cells nor points: only the keywords of this factor keyword are read.
             let mut w = Vec::new();
             for kw in ["NOEUD", "GROUP_NO", "MAILLE", "GROUP_MA"] {
-                if let Some(t) = occ.text(kw) {
+                if let Some(t) = occ.text_if_declared(kw) {
                     w.push(format!("{kw} {t}"));
                 }
             }
-            if let Some(p) = occ.int("POINT") {
+            if let Some(p) = occ.declares("POINT").then(|| occ.int("POINT")).flatten() {
                 w.push(format!("POINT {p}"));
             }
             (v, cmp.to_string(), format!("NOM_CMP {cmp} {}", w.join(" ")))

@@ -164,6 +164,29 @@ fn missing_unit_file() {
     let r = run_in(&dir, "case.export", &[]);
     assert_eq!(r.code, 2);
     assert!(r.stderr.contains("unit 31: data file") && r.stderr.contains("missing.31 does not exist"), "{}", r.stderr);
+    // ... and names the line of the .export that names it.
+    assert!(r.stderr.contains("case.export:3: F libr missing.31 D 31)"), "{}", r.stderr);
+    // A command file the .export names that does not exist, likewise.
+    std::fs::write(dir.join("case.export"), "P time_limit 60\nF comm nocase.comm D 1\n").unwrap();
+    let r = run_in(&dir, "case.export", &[]);
+    assert_eq!(r.code, 2);
+    assert!(
+        r.stderr.contains("command file") && r.stderr.contains("case.export:2: F comm nocase.comm D 1"),
+        "{}",
+        r.stderr
+    );
+}
+
+#[test]
+fn file_cut_in_the_middle_of_a_call() {
+    // The file ends inside the brackets of a call, on the line of its last bracket: the bracket left open
+    // is named (the end of the file used to be).
+    expect(
+        "cut",
+        "DEBUT()\nMO = AFFE_MODELE(MAILLAGE=MA,\n    AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE',",
+        "bad.comm:3:12: invalid syntax: '(' is never closed (the file ends at line 3, column",
+        "<F>_SYNTAX_ERROR",
+    );
 }
 
 #[test]

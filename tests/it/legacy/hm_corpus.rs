@@ -24,3 +24,35 @@ const CASES: [(&str, usize); 9] = [
 fn corpus_hm_cases_pass() {
     run_corpus_cases(&scratch!("corpus"), &CASES);
 }
+
+/// wtnl100b on 3D_HMS elements (the corpus has it on 3D_HMD): SIGM_ELNO is Code_Aster's fit through every
+/// point of the FPG8NOS family, the vertex points holding the effective stress of a Gauss point, and
+/// SIEQ_ELNO follows. At NO83 of MA16, first instant, Code_Aster's NON_REGRESSION VMIS is 0.4085 (we
+/// printed 1.0 when the fit took the Gauss points only).
+#[test]
+fn hms_stresses_at_the_nodes_are_code_asters() {
+    let dir = root().join("../shared/corpus/astest-2025");
+    if !dir.is_dir() {
+        println!("SKIP: {} is absent", dir.display());
+        return;
+    }
+    let out = scratch!("wtnl100b_hms");
+    let src = std::fs::read_to_string(dir.join("wtnl100b.comm")).unwrap().replace("\"3D_HMD\"", "\"3D_HMS\"");
+    std::fs::write(out.join("hms.comm"), src).unwrap();
+    let mesh = dir.join("wtnl100b.mmed");
+    let opts = aster::runner::RunOptions {
+        out_dir: Some(out.join("out")),
+        units: vec![(20, mesh, aster::runner::export::Dir::In)],
+        echo: false,
+    };
+    let o = aster::runner::run_comm(&out.join("hms.comm"), &opts);
+    let mess = std::fs::read_to_string(o.mess.expect("a message file")).unwrap();
+    let vmis = mess
+        .split(" ---- ")
+        .find(|b| b.starts_with("RESULTAT RESU1 NUME_ORDRE 1 NOM_CHAM SIEQ_ELNO NOM_CMP VMIS GROUP_NO NO83"))
+        .and_then(|b| b.lines().find(|l| l.contains("NON_REGRESSION   VMIS")))
+        .and_then(|l| l.split_whitespace().nth(4))
+        .and_then(|v| v.parse::<f64>().ok())
+        .unwrap_or_else(|| panic!("no VMIS check at NO83:\n{mess}"));
+    assert!((vmis - 0.4085).abs() < 1e-4, "VMIS at NO83: {vmis}");
+}
