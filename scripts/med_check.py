@@ -6,6 +6,7 @@ tests/med_roundtrip.rs to cross-check aster-rs's MED reader and writer.
 
     med_check.py mesh FILE          -> one line per fact (see below)
     med_check.py field FILE NAME    -> steps of a node field
+    med_check.py cells FILE         -> localizations and every field's values on every support
 
 `mesh` output lines (values separated by single spaces):
     MESH <name> <space dim> <nnodes>
@@ -17,6 +18,11 @@ tests/med_roundtrip.rs to cross-check aster-rs's MED reader and writer.
 `field` output lines:
     COMP <c1> <c2> ...
     STEP <numdt> <time> <v1> <v2> ...  values interlaced per node
+`cells` output lines:
+    LOC <name> <geometry type> <dim> <points> <x1> [<y1> [<z1>]] ... <w1> ...  (coordinates then weights)
+    FIELD <name> <steps> <c1> <c2> ...
+    VALUES <field> <numdt> <numit> <NODE|CELL|NODE_ELEMENT> <geometry type> <localization or -> <profile or ->
+           <entities> <values per entity> <v1> <v2> ...   values full-interlace (entity, point, component)
 """
 import os
 import sys
@@ -24,7 +30,9 @@ import sys
 from med.medenum import *  # noqa: F401,F403
 from med.medfamily import MEDfamilyInfo, MEDnFamily, MEDnFamilyGroup
 from med.medfield import (MEDfieldComputingStepInfo, MEDfieldInfo, MEDfieldnComponent,
-                          MEDfieldValueRd, MEDnField, MEDfieldnValue)
+                          MEDfieldValueRd, MEDnField, MEDfieldnValue, MEDfieldnValueWithProfile,
+                          MEDfieldValueWithProfileRd)
+from med.medlocalization import MEDlocalizationInfo, MEDlocalizationRd, MEDnLocalization
 from med.medfile import MEDCHAR, MEDFLOAT, MEDINT, MEDfileClose, MEDfileOpen
 from med.medmesh import (MEDmeshElementConnectivityRd, MEDmeshEntityFamilyNumberRd,
                          MEDmeshInfo, MEDmeshnEntity, MEDmeshNodeCoordinateRd, MEDnMesh)
@@ -121,8 +129,46 @@ def field_report(path, field):
     return out
 
 
+def cells_report(path):
+    fid = MEDfileOpen(path, MED_ACC_RDONLY)
+    out = []
+    for i in range(1, MEDnLocalization(fid) + 1):
+        name, geo, dim, npts = MEDlocalizationInfo(fid, i)[:4]
+        nno = int(geo) % 100
+        ref, gau, wg = MEDFLOAT(nno * dim), MEDFLOAT(npts * dim), MEDFLOAT(npts)
+        MEDlocalizationRd(fid, name, MED_FULL_INTERLACE, ref, gau, wg)
+        out.append("LOC %s %d %d %d %s %s" % (name, int(geo), dim, npts, " ".join(repr(float(x)) for x in gau),
+                                              " ".join(repr(float(w)) for w in wg)))
+    geos = [g for _, g, _ in TYPES]
+    for i in range(1, MEDnField(fid) + 1):
+        ncomp = MEDfieldnComponent(fid, i)
+        info = MEDfieldInfo(fid, i)
+        name, comps, nstep = info[0], info[4], info[7]
+        out.append("FIELD %s %d %s" % (name, nstep, " ".join(comps[16 * k:16 * (k + 1)].strip()
+                                                            for k in range(ncomp))))
+        for s in range(1, nstep + 1):
+            numdt, numit, dt = MEDfieldComputingStepInfo(fid, name, s)
+            for label, etype, gts in [("NODE", MED_NODE, [MED_NONE]), ("CELL", MED_CELL, geos),
+                                      ("NODE_ELEMENT", MED_NODE_ELEMENT, geos)]:
+                for geo in gts:
+                    n, pfl, _, loc, npts = MEDfieldnValueWithProfile(fid, name, numdt, numit, etype, geo, 1,
+                                                                     MED_COMPACT_PFLMODE)
+                    if n <= 0:
+                        continue
+                    vals = MEDFLOAT(n * npts * ncomp)
+                    MEDfieldValueWithProfileRd(fid, name, numdt, numit, etype, geo, MED_COMPACT_STMODE, pfl,
+                                               MED_FULL_INTERLACE, MED_ALL_CONSTITUENT, vals)
+                    out.append("VALUES %s %d %d %s %d %s %s %d %d %s" % (
+                        name, numdt, numit, label, int(geo), loc or "-", pfl or "-", n, npts,
+                        " ".join(repr(float(v)) for v in vals)))
+    MEDfileClose(fid)
+    return out
+
+
 def main():
-    if len(sys.argv) >= 3 and sys.argv[1] == "mesh":
+    if len(sys.argv) >= 3 and sys.argv[1] == "cells":
+        lines = cells_report(sys.argv[2])
+    elif len(sys.argv) >= 3 and sys.argv[1] == "mesh":
         lines = mesh_report(sys.argv[2])
     elif len(sys.argv) >= 4 and sys.argv[1] == "field":
         lines = field_report(sys.argv[2], sys.argv[3])

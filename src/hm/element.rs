@@ -12,7 +12,7 @@
 use super::law::{update, Derivatives, IntegrationFailure, PointState};
 use super::material::Biot;
 use crate::fem::elasticity::{vertex_type, IsoElastic, Modelisation};
-use crate::fem::quadrature::aster_rule;
+use crate::fem::quadrature::{aster_rule, QuadratureRule};
 use crate::fem::reference::shape_and_deriv;
 use crate::mesh::CellType;
 
@@ -130,6 +130,32 @@ fn families(variant: Variant, t: CellType) -> Result<(Option<&'static str>, bool
         Variant::Lumped => (None, true),
         Variant::Selective => (Some(reduced), true),
     })
+}
+
+/// The integration points of a variant on a cell (the points of SIEF_ELGA, in their order) with
+/// Code_Aster's name of their family (`FPG9`, `NOEU_S`, `FPG4NOS` for the Gauss points then the
+/// vertices of an `*_HMS` element).
+pub fn point_family(variant: Variant, t: CellType) -> Result<(String, QuadratureRule), String> {
+    let (gauss, vertices) = families(variant, t)?;
+    let mut rules = Vec::new();
+    if let Some(f) = gauss {
+        rules.push(aster_rule(t, f).ok_or_else(|| format!("no {f} rule on {}", t.name()))?);
+    }
+    if vertices {
+        rules.push(aster_rule(t, "NOEU_S").ok_or_else(|| format!("no NOEU_S rule on {}", t.name()))?);
+    }
+    let name = match (gauss, vertices) {
+        (Some(g), true) => format!("{g}NOS"),
+        (Some(g), false) => g.to_string(),
+        _ => "NOEU_S".to_string(),
+    };
+    let mut rule = rules[0].clone();
+    for r in &rules[1..] {
+        rule.points.extend_from_slice(&r.points);
+        rule.weights.extend_from_slice(&r.weights);
+    }
+    rule.name = name.clone();
+    Ok((name, rule))
 }
 
 /// The number of integration points of a variant on a cell (the points of SIEF_ELGA).

@@ -1,14 +1,19 @@
-//! `aster diff`: compare the meshes and node fields of two MED files.
+//! `aster diff`: compare the meshes and the fields of two MED files.
 //!
 //! Meshes are compared by name: space dimension, node coordinates (within
 //! the tolerance), node and cell names, cell types and connectivity, group
-//! names and members (exactly). Node fields are compared by name, component
-//! and time step (`numdt`): for each, the largest absolute difference
-//! `|a - b|` and the largest relative difference `|a - b| / max(|a|, |b|)`
-//! (0 where both are 0), with the node where each occurs. A value is within
-//! tolerance when `|a - b| <= atol + rtol * max(|a|, |b|)`.
+//! names and members (exactly). Fields of every support (nodes, cells, nodes
+//! of cells, integration points) are compared by name, component, step
+//! (its order number: `numit`, else `numdt`) and kind of entity (nodes, or a
+//! cell type): for each, the largest absolute difference `|a - b|` and the
+//! largest relative difference `|a - b| / max(|a|, |b|)` (0 where both are
+//! 0), with the node, cell, point or node of a cell where each occurs, in a
+//! table. A value is within tolerance when `|a - b| <= atol + rtol * max(|a|, |b|)`;
+//! values at integration points are compared only where both files place
+//! them at the same points.
 
-use super::{list_fields, list_meshes, read_mesh, read_node_field};
+use super::cellfield::{read_field, read_localizations, Block, Support};
+use super::{list_fields, list_meshes, read_mesh};
 use crate::diag::Result;
 use crate::mesh::Mesh;
 use std::collections::BTreeSet;
@@ -202,7 +207,101 @@ fn diff_mesh(out: &mut String, name: &str, a: &Mesh, b: &Mesh, tol: Tolerance) -
     ok
 }
 
-/// Compare two MED files (meshes and node fields).
+/// Where the values of a block live, for messages: `N12`, `M4 point 3`, `M4 node N7`, `M4`.
+struct Places<'m> {
+    mesh: Option<&'m Mesh>,
+    by_type: std::collections::BTreeMap<crate::mesh::CellType, Vec<usize>>,
+}
+
+impl<'m> Places<'m> {
+    fn new(mesh: Option<&'m Mesh>) -> Self {
+        Places { mesh, by_type: mesh.map(super::cellfield::cells_by_type).unwrap_or_default() }
+    }
+
+    fn cell(&self, t: crate::mesh::CellType, pos: usize) -> Option<usize> {
+        self.by_type.get(&t).and_then(|v| v.get(pos)).copied()
+    }
+
+    /// The place of value pair `i` of a block (entity `i / per_entity`, point `i % per_entity`).
+    fn of(&self, b: &Block, i: usize) -> String {
+        let (e, p) = (i / b.per_entity.max(1), i % b.per_entity.max(1));
+        let Some(&ent) = b.entities.get(e) else { return "-".into() };
+        match (b.support, b.cell) {
+            (Support::Node, _) => node_label(self.mesh, ent),
+            (_, Some(t)) => {
+                let c = self.cell(t, ent);
+                let cname = match (self.mesh, c) {
+                    (Some(m), Some(c)) => m.cell_names[c].clone(),
+                    _ => format!("{} #{}", t.name(), ent + 1),
+                };
+                match b.support {
+                    Support::CellNode => match (self.mesh, c) {
+                        (Some(m), Some(c)) => format!("{cname} node {}", node_label(Some(m), m.cells[c][p])),
+                        _ => format!("{cname} node #{}", p + 1),
+                    },
+                    _ if b.localization.is_some() => format!("{cname} point {}", p + 1),
+                    _ => cname,
+                }
+            }
+            _ => "-".into(),
+        }
+    }
+}
+
+/// What a block is on: `nodes`, or the cell type and the kind of values.
+fn block_kind(b: &Block) -> String {
+    match (b.support, b.cell) {
+        (Support::Node, _) => "nodes".into(),
+        (Support::CellNode, Some(t)) => format!("{} nodes", t.name()),
+        (Support::Cell, Some(t)) if b.localization.is_some() => format!("{} points", t.name()),
+        (_, Some(t)) => format!("{} cells", t.name()),
+        _ => "?".into(),
+    }
+}
+
+/// The rows of the field table: field, component, step, entities, max |a-b| and where, max rel and
+/// where, verdict.
+struct Table {
+    rows: Vec<[String; 9]>,
+}
+
+impl Table {
+    fn note(&mut self, field: &str, what: String) {
+        let mut r: [String; 9] = Default::default();
+        r[0] = field.to_string();
+        r[3] = what;
+        r[8] = "DIFFERENT".into();
+        self.rows.push(r);
+    }
+
+    fn render(&self, out: &mut String) {
+        if self.rows.is_empty() {
+            return;
+        }
+        let head = ["field", "cmp", "step", "on", "max |a-b|", "at", "max rel", "at", "verdict"];
+        let mut w = head.map(str::len);
+        for r in &self.rows {
+            for (k, c) in r.iter().enumerate() {
+                w[k] = w[k].max(c.len());
+            }
+        }
+        let line = |cells: &[String], out: &mut String| {
+            let mut s = String::new();
+            for (k, c) in cells.iter().enumerate() {
+                let _ = write!(s, "{c:<width$}  ", width = w[k]);
+            }
+            let _ = writeln!(out, "{}", s.trim_end());
+        };
+        line(&head.map(String::from), out);
+        for r in &self.rows {
+            line(r, out);
+        }
+    }
+}
+
+/// Compare two MED files: meshes, and every field of every support (nodes, cells, nodes of cells,
+/// integration points), per component, step and kind of entity: the largest absolute and relative
+/// differences and where they are.
 pub fn diff_files(pa: &Path, pb: &Path, tol: Tolerance) -> Result<Report> {
     let mut out = String::new();
     let mut within = true;
@@ -210,14 +309,37 @@ pub fn diff_files(pa: &Path, pb: &Path, tol: Tolerance) -> Result<Report> {
     let ma = list_meshes(pa)?;
     let mb = list_meshes(pb)?;
     let mut meshes_a = std::collections::BTreeMap::new();
-    for name in ma.iter().chain(mb.iter()).collect::<BTreeSet<_>>() {
-        match (ma.contains(name), mb.contains(name)) {
-            (true, true) => {
-                let a = read_mesh(pa, Some(name))?;
-                let b = read_mesh(pb, Some(name))?;
-                within &= diff_mesh(&mut out, name, &a, &b, tol);
-                meshes_a.insert(name.clone(), a);
+    // One mesh in each file under two names (a file of Code_Aster's names its mesh after the concept, or
+    // with a number): they are compared with each other.
+    if let ([a1], [b1]) = (ma.as_slice(), mb.as_slice()) {
+        if a1 != b1 {
+            match (read_mesh(pa, Some(a1)), read_mesh(pb, Some(b1))) {
+                (Ok(a), Ok(b)) => {
+                    within &= diff_mesh(&mut out, &format!("{a1} (A) / {b1} (B)"), &a, &b, tol);
+                    meshes_a.insert(a1.clone(), a);
+                }
+                (Err(e), _) | (_, Err(e)) => {
+                    let _ = writeln!(out, "mesh {a1} (A) / {b1} (B): not compared ({})", e.msg);
+                }
             }
+        }
+    }
+    for name in ma.iter().chain(mb.iter()).collect::<BTreeSet<_>>() {
+        if ma.len() == 1 && mb.len() == 1 && ma[0] != mb[0] {
+            break;
+        }
+        match (ma.contains(name), mb.contains(name)) {
+            (true, true) => match (read_mesh(pa, Some(name)), read_mesh(pb, Some(name))) {
+                (Ok(a), Ok(b)) => {
+                    within &= diff_mesh(&mut out, name, &a, &b, tol);
+                    meshes_a.insert(name.clone(), a);
+                }
+                // A mesh we cannot read (a layout we do not know): its fields are still compared, their
+                // places given by numbers.
+                (Err(e), _) | (_, Err(e)) => {
+                    let _ = writeln!(out, "mesh {name}: not compared ({})", e.msg);
+                }
+            },
             (true, false) => {
                 let _ = writeln!(out, "mesh {name}: only in A  DIFFERENT");
                 within = false;
@@ -230,80 +352,115 @@ pub fn diff_files(pa: &Path, pb: &Path, tol: Tolerance) -> Result<Report> {
     }
     let fa = list_fields(pa)?;
     let fb = list_fields(pb)?;
+    let locs_a = read_localizations(pa)?;
+    let locs_b = read_localizations(pb)?;
+    let mut table = Table { rows: Vec::new() };
+    let (mut compared, mut beyond_rows) = (0usize, 0usize);
     for name in fa.iter().chain(fb.iter()).collect::<BTreeSet<_>>() {
         if !fa.contains(name) || !fb.contains(name) {
-            let _ = writeln!(out, "field {name}: only in {}  DIFFERENT", if fa.contains(name) { "A" } else { "B" });
+            table.note(name, format!("only in {}", if fa.contains(name) { "A" } else { "B" }));
             within = false;
             continue;
         }
-        let a = read_node_field(pa, name)?;
-        let b = read_node_field(pb, name)?;
-        if a.steps.is_empty() && b.steps.is_empty() {
-            let _ = writeln!(out, "field {name}: no node values (not compared)");
-            continue;
-        }
+        let (a, b) = match (read_field(pa, name), read_field(pb, name)) {
+            (Ok(a), Ok(b)) => (a, b),
+            (Err(e), _) | (_, Err(e)) => {
+                table.note(name, format!("not compared: {}", e.msg));
+                within = false;
+                continue;
+            }
+        };
         if a.components != b.components {
-            let _ = writeln!(
-                out,
-                "field {name}: components [{}] vs [{}]  DIFFERENT",
-                a.components.join(" "),
-                b.components.join(" ")
-            );
+            table.note(name, format!("components [{}] vs [{}]", a.components.join(" "), b.components.join(" ")));
             within = false;
             continue;
         }
-        let mesh = meshes_a.get(&a.mesh_name);
+        let places = Places::new(meshes_a.get(&a.mesh_name));
         let nco = a.components.len().max(1);
-        let steps_b: std::collections::BTreeMap<i32, &(i32, f64, Vec<f64>)> =
-            b.steps.iter().map(|s| (s.0, s)).collect();
-        for (numdt, time, va) in &a.steps {
-            let Some((_, tb, vb)) = steps_b.get(numdt) else {
-                let _ = writeln!(out, "field {name} step {numdt}: only in A  DIFFERENT");
+        for sa in &a.steps {
+            let step = sa.order();
+            let Some(sb) = b.steps.iter().find(|s| s.order() == step) else {
+                table.note(name, format!("step {step} only in A"));
                 within = false;
                 continue;
             };
-            if va.len() != vb.len() {
-                let _ = writeln!(
-                    out,
-                    "field {name} step {numdt}: {} vs {} values  DIFFERENT",
-                    va.len() / nco,
-                    vb.len() / nco
-                );
-                within = false;
-                continue;
-            }
-            if !tol.accepts(*time, *tb) {
-                let _ = writeln!(out, "field {name} step {numdt}: time {time} vs {tb}  DIFFERENT");
+            let step_label = format!("{step} (t={})", sa.time);
+            if !tol.accepts(sa.time, sb.time) {
+                table.note(name, format!("step {step}: time {} vs {}", sa.time, sb.time));
                 within = false;
             }
-            let named = mesh.filter(|m| m.nnodes() * nco == va.len());
-            for (k, comp) in a.components.iter().enumerate() {
-                let e = extremes(va, vb, nco, k, tol);
-                max_abs = max_abs.max(e.max_abs);
-                let ok = e.beyond == 0;
-                within &= ok;
-                let _ = writeln!(
-                    out,
-                    "field {name} {comp} step {numdt} (t={time}): max |a-b| = {:.6e} at {}, max rel = {:.6e} at {}{}  {}",
-                    e.max_abs,
-                    node_label(named, e.at_abs),
-                    e.max_rel,
-                    node_label(named, e.at_rel),
-                    if ok { String::new() } else { format!(", {} values beyond tolerance", e.beyond) },
-                    verdict(ok)
-                );
+            for ba in &sa.blocks {
+                let kind = block_kind(ba);
+                let Some(bb) = sb.blocks.iter().find(|x| x.support == ba.support && x.cell == ba.cell) else {
+                    table.note(name, format!("step {step}: values on {kind} only in A"));
+                    within = false;
+                    continue;
+                };
+                if let (Some(la), Some(lb)) = (&ba.localization, &bb.localization) {
+                    let same = match (locs_a.get(la), locs_b.get(lb)) {
+                        (Some(x), Some(y)) => x.same_points(y),
+                        _ => la == lb,
+                    };
+                    if !same {
+                        table.note(name, format!("step {step}: {kind}: the points differ ({la} vs {lb})"));
+                        within = false;
+                        continue;
+                    }
+                }
+                if ba.entities != bb.entities || ba.per_entity != bb.per_entity {
+                    table.note(
+                        name,
+                        format!(
+                            "step {step}: {kind}: {} x {} values vs {} x {}",
+                            ba.entities.len(),
+                            ba.per_entity,
+                            bb.entities.len(),
+                            bb.per_entity
+                        ),
+                    );
+                    within = false;
+                    continue;
+                }
+                for (k, comp) in a.components.iter().enumerate() {
+                    let e = extremes(&ba.values, &bb.values, nco, k, tol);
+                    max_abs = max_abs.max(e.max_abs);
+                    compared += 1;
+                    let ok = e.beyond == 0;
+                    within &= ok;
+                    if !ok {
+                        beyond_rows += 1;
+                    }
+                    table.rows.push([
+                        name.clone(),
+                        comp.clone(),
+                        step_label.clone(),
+                        kind.clone(),
+                        format!("{:.6e}", e.max_abs),
+                        if e.max_abs > 0.0 { places.of(ba, e.at_abs) } else { "-".into() },
+                        format!("{:.6e}", e.max_rel),
+                        if e.max_rel > 0.0 { places.of(ba, e.at_rel) } else { "-".into() },
+                        if ok { "OK".into() } else { format!("DIFFERENT ({} values)", e.beyond) },
+                    ]);
+                }
+            }
+            for bb in &sb.blocks {
+                if !sa.blocks.iter().any(|x| x.support == bb.support && x.cell == bb.cell) {
+                    table.note(name, format!("step {step}: values on {} only in B", block_kind(bb)));
+                    within = false;
+                }
             }
         }
-        for numdt in b.steps.iter().map(|s| s.0) {
-            if !a.steps.iter().any(|s| s.0 == numdt) {
-                let _ = writeln!(out, "field {name} step {numdt}: only in B  DIFFERENT");
+        for sb in &b.steps {
+            if !a.steps.iter().any(|s| s.order() == sb.order()) {
+                table.note(name, format!("step {} only in B", sb.order()));
                 within = false;
             }
         }
     }
+    table.render(&mut out);
     let _ = writeln!(
         out,
-        "{} (rtol {:e}, atol {:e})",
+        "{} ({compared} field components compared, {beyond_rows} beyond tolerance; rtol {:e}, atol {:e})",
         if within { "files match" } else { "files differ" },
         tol.rtol,
         tol.atol

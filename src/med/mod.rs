@@ -1,4 +1,5 @@
-//! MED files (MED-fichier 3.x / 4.x over HDF5): meshes and node fields.
+//! MED files (MED-fichier 3.x / 4.x over HDF5): meshes, and fields of every support (nodes, cells,
+//! nodes of cells, integration points with their localizations) with profiles.
 //!
 //! Layout handled here (MED 3/4, unstructured meshes, nodal connectivity):
 //!
@@ -9,6 +10,9 @@
 //! /ENS_MAA/<mesh>/<step>/MAI/<TYP>/{NOD,NOM,NUM,FAM}
 //! /FAS/<mesh>/{NOEUD,ELEME}/<family>/GRO/NOM   family number in attr NUM
 //! /CHA/<field>/<numdt><numit>/NOE/MED_NO_PROFILE_INTERNAL/CO
+//! /CHA/<field>/<numdt><numit>/{MAI,NOE}.<TYP>/<profile>/CO     cell fields (cellfield.rs)
+//! /GAUSS/<localization>/{COO,GAU,VAL}                          integration points (gauss.rs)
+//! /PROFILS/<profile>/PFL                                       parts of the mesh
 //! ```
 //!
 //! Coordinates, connectivities and field values are stored non-interlaced
@@ -18,13 +22,17 @@
 //! (see [`types::MedType::rank`]), file order within a type. Unnamed entities get
 //! Code_Aster's default names `N1, N2, ...` / `M1, M2, ...`.
 
+pub mod cellfield;
 pub mod diff;
 mod field;
+pub mod gauss;
 mod read;
 pub mod types;
 mod write;
 
+pub use cellfield::{read_field, read_localizations, write_fields, Block, FieldStep, MedField, Support};
 pub use field::{list_fields, read_node_field, write_node_field, NodeField};
+pub use gauss::Localization;
 pub use read::{list_meshes, read_mesh};
 pub use write::write_mesh;
 

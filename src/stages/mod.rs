@@ -125,6 +125,8 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "DEFI_GROUP" => mesh::defi_group,
         "CREA_MAILLAGE" => mesh::crea_maillage::crea_maillage,
         "IMPR_RESU" => print::impr_resu,
+        "LIRE_RESU" => print::lire::lire_resu,
+        "LIRE_CHAMP" => print::lire::lire_champ,
         "AFFE_MODELE" => model::affe_modele,
         "DEFI_MATERIAU" => material::defi_materiau,
         "AFFE_MATERIAU" => material::affe_materiau,

@@ -1,8 +1,10 @@
-//! Printing results and meshes (IMPR_RESU).
+//! Results and fields to and from files: IMPR_RESU, LIRE_RESU, LIRE_CHAMP.
 
 use super::common::*;
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptKind;
+use crate::diag::{Error, Result};
 use crate::kws;
 
 // ------------------------------------------------------------------ IMPR_RESU
@@ -195,6 +197,198 @@ fn impr_resu() -> Command {
     ])
 }
 
+// ------------------------------------------------------------------ LIRE_RESU, LIRE_CHAMP
+
+/// LIRE_RESU: TYPE_RESU decides the type of the result.
+fn lire_resu_type(a: &Args) -> Result<ConceptKind> {
+    match a.text("TYPE_RESU") {
+        Some("EVOL_ELAS") => Ok(ConceptKind::EvolElas),
+        Some("EVOL_NOLI") => Ok(ConceptKind::EvolNoli),
+        Some(other) => Err(Error::unsupported(format!(
+            "LIRE_RESU TYPE_RESU='{other}' is not supported yet (EVOL_ELAS and EVOL_NOLI are)"
+        ))
+        .at(a.span_of("TYPE_RESU"))),
+        None => Err(missing(a, "TYPE_RESU")),
+    }
+}
+
+fn lire_resu() -> Command {
+    let excit = |extra: Vec<Entry>| {
+        fact("EXCIT", with(kws![simp("CHARGE").co(&[ConceptKind::CharMeca]).o(), simp("FONC_MULT").co(FUNCS),], extra))
+            .many()
+    };
+    Command::new("LIRE_RESU", "Read the fields of a result from a file (MED) into a result concept.")
+        .produces_dyn(lire_resu_type)
+        .reuse()
+        .kw(with(
+            kws![
+                simp("TYPE_RESU").txt().o().one_of(&[
+                    "EVOL_THER",
+                    "EVOL_ELAS",
+                    "EVOL_NOLI",
+                    "MODE_MECA",
+                    "MODE_MECA_C",
+                    "DYNA_TRANS",
+                    "DYNA_HARMO",
+                    "EVOL_CHAR",
+                    "EVOL_VARC",
+                    "MODE_EMPI",
+                    "EVOL_SECH",
+                ]),
+                simp("FORMAT").txt().o().one_of(&["IDEAS", "IDEAS_DS58", "MED"]),
+                simp("INFO").i().one_of_i(&[1, 2]),
+                simp("TITRE").txt(),
+                simp("RESULTAT").co(RESULTS),
+                simp("MAILLAGE").co(&[ConceptKind::Maillage]),
+                simp("MODELE").co(&[ConceptKind::Modele]),
+                simp("CHAM_MATER").co(&[ConceptKind::ChamMater]),
+                simp("TOUT_ORDRE").txt().one_of(&["OUI"]),
+                simp("NUME_ORDRE").i().many(),
+                simp("INST").r().many(),
+                simp("LIST_INST").co(&[ConceptKind::ListR8]),
+                simp("LIST_ORDRE").co(&[ConceptKind::ListIs]),
+                simp("FREQ").r().many(),
+                simp("LIST_FREQ").co(&[ConceptKind::ListR8]),
+                bloc(
+                    or(vec![present("INST"), present("LIST_INST"), present("FREQ"), present("LIST_FREQ")]),
+                    crit_prec()
+                ),
+                bloc(
+                    eq("TYPE_RESU", "EVOL_ELAS"),
+                    kws![excit(kws![simp("TYPE_CHARGE").txt().d("FIXE_CSTE").one_of(&["FIXE_CSTE"])])]
+                ),
+                bloc(
+                    eq("TYPE_RESU", "EVOL_NOLI"),
+                    kws![
+                        super::solve::comportement(),
+                        simp("VERI_VARI").txt().d("OUI").one_of(OUI_NON),
+                        excit(kws![simp("TYPE_CHARGE").txt().d("FIXE_CSTE").one_of(&[
+                            "FIXE_CSTE",
+                            "FIXE_PILO",
+                            "SUIV",
+                            "DIDI"
+                        ])]),
+                    ]
+                ),
+                bloc(
+                    eq("FORMAT", "MED"),
+                    kws![
+                        simp("UNITE").i().d(81),
+                        fact(
+                            "FORMAT_MED",
+                            kws![
+                                simp("NOM_CHAM").txt().o(),
+                                simp("NOM_CHAM_MED").txt(),
+                                simp("NOM_RESU").txt(),
+                                simp("NOM_CMP").txt().many(),
+                                simp("NOM_CMP_MED").txt().many(),
+                            ]
+                        )
+                        .o()
+                        .many()
+                        .rules(vec![ensemble(&["NOM_CMP", "NOM_CMP_MED"]), un_parmi(&["NOM_CHAM_MED", "NOM_RESU"])]),
+                        simp("PROL_ZERO").txt().d("OUI").one_of(OUI_NON),
+                    ]
+                ),
+                bloc(is_in("FORMAT", &["IDEAS", "IDEAS_DS58"]), kws![simp("UNITE").i().d(19)]),
+                // The IDEAS formats' keywords, so that a file using them stops on FORMAT by name.
+                bloc(
+                    eq("FORMAT", "IDEAS_DS58"),
+                    kws![
+                        simp("NOM_CHAM").txt().many(),
+                        fact(
+                            "REDEFI_ORIENT",
+                            kws![
+                                simp("CODE_DIR").i().one_of_i(&[1, 2, 3]),
+                                simp("DIRECTION").r().min(3).max(3),
+                                simp("NOEUD").txt().many(),
+                            ]
+                        )
+                        .many()
+                    ]
+                ),
+                bloc(
+                    eq("FORMAT", "IDEAS"),
+                    kws![
+                        simp("NB_VARI").i(),
+                        simp("NOM_CHAM").txt().o().many(),
+                        fact(
+                            "FORMAT_IDEAS",
+                            kws![
+                                simp("NOM_CHAM").txt().o(),
+                                simp("NUME_DATASET").i().one_of_i(&[55, 57, 2414]),
+                                simp("RECORD_3").i().max(10),
+                                simp("RECORD_6").i().max(10),
+                                simp("RECORD_9").i().max(10),
+                                simp("POSI_ORDRE").i().min(2).max(2).o(),
+                                simp("POSI_NUME_MODE").i().min(2).max(2),
+                                simp("POSI_MASS_GENE").i().min(2).max(2),
+                                simp("POSI_AMOR_GENE").i().min(2).max(2),
+                                simp("POSI_INST").i().min(2).max(2),
+                                simp("POSI_FREQ").i().min(2).max(2),
+                                simp("NOM_CMP").txt().o().many(),
+                            ]
+                        )
+                        .many()
+                        .rules(vec![un_parmi(&["POSI_INST", "POSI_FREQ"])]),
+                    ]
+                ),
+            ],
+            vec![],
+        ))
+        .rules(vec![
+            un_parmi(&["MAILLAGE", "MODELE"]),
+            un_parmi(&["TOUT_ORDRE", "NUME_ORDRE", "LIST_ORDRE", "INST", "LIST_INST", "FREQ", "LIST_FREQ"]),
+        ])
+}
+
+/// LIRE_CHAMP: the location part of TYPE_CHAM decides the kind of field.
+fn lire_champ_type(a: &Args) -> Result<ConceptKind> {
+    let t = a.text("TYPE_CHAM").ok_or_else(|| missing(a, "TYPE_CHAM"))?;
+    match t.split('_').next().unwrap_or("") {
+        "NOEU" => Ok(ConceptKind::ChamNo),
+        "CART" => Ok(ConceptKind::Carte),
+        "ELEM" | "ELGA" | "ELNO" => Ok(ConceptKind::ChamElem),
+        _ => Err(Error::catalog(format!("TYPE_CHAM '{t}' must start with NOEU_, ELEM_, ELGA_, ELNO_ or CART_"))
+            .at(a.span_of("TYPE_CHAM"))),
+    }
+}
+
+fn lire_champ() -> Command {
+    Command::new("LIRE_CHAMP", "Read one field from a MED file into a field concept.").produces_dyn(lire_champ_type).kw(
+        kws![
+            simp("MAILLAGE").co(&[ConceptKind::Maillage]).o(),
+            simp("FORMAT").txt().d("MED").one_of(&["MED"]),
+            simp("UNITE").i().d(81),
+            bloc(
+                eq("FORMAT", "MED"),
+                kws![
+                    simp("NOM_MED").txt().o(),
+                    simp("NOM_CMP_IDEM").txt().one_of(&["OUI"]),
+                    simp("NOM_CMP").txt().many(),
+                    simp("NOM_CMP_MED").txt().many(),
+                    simp("PROL_ZERO").txt().d("NON").one_of(OUI_NON),
+                    simp("NUME_PT").i().many(),
+                    simp("NUME_ORDRE").i().many(),
+                    simp("INST").r(),
+                    bloc(present("INST"), crit_prec()),
+                    simp("NOM_MAIL_MED").txt(),
+                ]
+            )
+            .rules(vec![
+                un_parmi(&["NOM_CMP_IDEM", "NOM_CMP"]),
+                present_present("NOM_CMP", &["NOM_CMP_MED"]),
+                exclus(&["NUME_ORDRE", "INST"]),
+                exclus(&["NUME_PT", "INST"]),
+            ]),
+            simp("TYPE_CHAM").txt().o(),
+            // Code_Aster asks MODELE exactly when TYPE_CHAM starts with EL: the stage checks it.
+            simp("MODELE").co(&[ConceptKind::Modele]),
+            simp("INFO").i().d(1).one_of_i(&[1, 2]),
+        ],
+    )
+}
+
 pub fn commands() -> Vec<Command> {
-    vec![impr_resu()]
+    vec![impr_resu(), lire_resu(), lire_champ()]
 }

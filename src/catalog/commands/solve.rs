@@ -199,7 +199,7 @@ const KIT_THM: &[&str] = &[
 /// criteria depend on the law (1e-6 / 20 iterations in general, 1e-8 / 100
 /// for MFRONT, -1 iterations for the RGI concrete laws) and are left to the
 /// stage.
-fn comportement() -> Fact {
+pub(super) fn comportement() -> Fact {
     fact(
         "COMPORTEMENT",
         kws![

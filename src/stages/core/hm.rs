@@ -290,11 +290,30 @@ fn enriched_points(
     CellPoints::enriched(kin, t, &coords, &points, &ucols, &pcols, next, &factor)
 }
 
+/// The integration points of the ELGA fields of an element (modelisation `m` on a cell of type `t`), in
+/// the order of the fields' values, with Code_Aster's name of their family: an HM element's (see
+/// [`crate::hm::element::point_family`]), else the RIGI family of the mechanical element.
+pub fn elga_family(
+    m: Modelling,
+    t: crate::mesh::CellType,
+) -> std::result::Result<(String, crate::fem::quadrature::QuadratureRule), String> {
+    match hm_kind(m) {
+        Some((_, variant)) => crate::hm::element::point_family(variant, t),
+        None => {
+            let rule = match m.mechanics() {
+                Some(md) => crate::fem::elasticity::rigi_rule_of(md, t),
+                None => crate::fem::elasticity::rigi_rule(t),
+            };
+            Ok((rule.name.clone(), rule))
+        }
+    }
+}
+
 /// The number of integration points of a cell's element (the points of its ELGA fields): the HM
 /// variant's family, or the RIGI family of a mechanical element.
 pub fn elga_points(m: Modelling, t: crate::mesh::CellType) -> std::result::Result<usize, String> {
     match hm_kind(m) {
         Some((_, variant)) => crate::hm::element::point_count(variant, t),
-        None => Ok(crate::fem::elasticity::rigi_rule(t).len()),
+        None => elga_family(m, t).map(|(_, r)| r.len()),
     }
 }

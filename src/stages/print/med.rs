@@ -1,41 +1,36 @@
-//! IMPR_RESU FORMAT='MED': a mesh and the node fields of results.
+//! IMPR_RESU FORMAT='MED': a mesh and the fields of results and of CHAM_GD.
 
+use super::med_fields::{blocks_of, Selection};
+use super::{concept_name, selected_fields, selected_steps};
 use crate::catalog::args::Args;
 use crate::concepts::result::Field;
 use crate::concepts::ConceptData;
 use crate::diag::{Error, Result};
+use crate::med::{self, FieldStep, Localization, MedField};
 use crate::mesh::Mesh;
 use crate::stages::Ctx;
 use std::fmt::Write as _;
 use std::rc::Rc;
-
-use super::{concept_name, selected_fields, selected_steps};
-use crate::med;
 // ------------------------------------------------------------------ IMPR_RESU
 //
-// IMPR_RESU FORMAT='MED' writes one mesh and node fields on it. Field names
-// follow Code_Aster (`mdnoch` and the Python IMPR_RESU): the result name
-// (NOM_RESU_MED, else the concept name), cut to 8 characters and padded to 8
-// with '_', then the field name (`RESU____DEPL`); NOM_CHAM_MED names them
-// explicitly. A step is written as numdt = NUME_ORDRE at time INST. Like
-// Code_Aster, a unit already written in the run is extended (its mesh is
-// kept, fields are added), and a field missing at some selected steps or a
+// IMPR_RESU FORMAT='MED' writes one mesh and fields on it: node fields, and cell fields at the nodes of
+// cells (ELNO), at integration points (ELGA, with Code_Aster's localizations) and constant on cells
+// (ELEM), on the whole mesh or on the part GROUP_MA / GROUP_NO select (MED profiles). Field names follow
+// Code_Aster (`mdnoch` and the Python IMPR_RESU): the result name (NOM_RESU_MED, else the concept
+// name), cut to 8 characters and padded to 8 with '_', then the field name (`RESU____DEPL`);
+// NOM_CHAM_MED names them explicitly; a CHAM_GD is written under its concept name. A step is written as
+// numdt = numit = NUME_ORDRE at time INST (`irchme`). Like Code_Aster, a unit already written in the run
+// is extended (its mesh is kept, fields are added), and a field missing at some selected steps or a
 // NOM_CMP component missing from a field gives an alarm.
 
-/// What one IMPR_RESU call writes: a mesh and node fields on it.
+/// What one IMPR_RESU call writes: a mesh and fields on it.
 #[derive(Default)]
 struct MedOut {
     mesh: Option<(String, Rc<Mesh>)>,
-    fields: Vec<FieldOut>,
+    fields: Vec<MedField>,
+    localizations: Vec<Localization>,
+    info: String,
     alarms: String,
-}
-
-/// One node field to write: its MED name, components and
-/// `(numdt, time, values interlaced per node)`.
-struct FieldOut {
-    med_name: String,
-    components: Vec<String>,
-    steps: Vec<(i32, f64, Vec<f64>)>,
 }
 
 impl MedOut {
@@ -57,6 +52,13 @@ impl MedOut {
             )),
         }
     }
+
+    fn add(&mut self, field: MedField) {
+        match self.fields.iter_mut().find(|f| f.name == field.name) {
+            Some(f) => f.steps.extend(field.steps),
+            None => self.fields.push(field),
+        }
+    }
 }
 
 /// Code_Aster's MED field name for field `symbol` of a result named `prefix`.
@@ -65,26 +67,8 @@ fn med_field_name(prefix: &str, symbol: &str) -> String {
     format!("{short:_<8}{symbol}")
 }
 
-fn field_kind(f: &Field) -> &'static str {
-    match f {
-        Field::Node { .. } => "node (NOEU)",
-        Field::Elno { .. } => "ELNO",
-        Field::Elga { .. } => "ELGA",
-        Field::Elem { .. } => "ELEM",
-    }
-}
-
 /// Keywords of a RESU occurrence that IMPR_RESU (MED) does not handle yet.
 fn refuse_med_keywords(occ: &Args) -> Result<()> {
-    if occ.has("CHAM_GD") {
-        return Err(occ.err("CHAM_GD", "printing a CHAM_GD to MED is not supported yet (MAILLAGE and RESULTAT are)"));
-    }
-    for kw in ["GROUP_MA", "GROUP_NO", "MAILLE"] {
-        if occ.has(kw) {
-            return Err(occ
-                .err(kw, format!("{kw}: restricting fields to part of the mesh (MED profiles) is not supported yet")));
-        }
-    }
     if occ.has("PARTIE") {
         return Err(occ.err("PARTIE", "PARTIE applies to complex fields, which are not supported yet"));
     }
@@ -94,7 +78,7 @@ fn refuse_med_keywords(occ: &Args) -> Result<()> {
     if occ.has("SOUS_TITRE") {
         return Err(occ.err("SOUS_TITRE", "SOUS_TITRE is not supported yet with FORMAT='MED'"));
     }
-    if occ.has("RESULTAT") {
+    if occ.has("RESULTAT") || occ.has("CHAM_GD") {
         return Ok(());
     }
     for kw in ["NOM_CMP", "TOUT_CMP"] {
@@ -105,24 +89,48 @@ fn refuse_med_keywords(occ: &Args) -> Result<()> {
     Ok(())
 }
 
-/// Collect the node fields of one RESULTAT occurrence.
-fn plan_result(out: &mut MedOut, occ: &Args) -> Result<()> {
-    let rc = occ.req_concept("RESULTAT")?;
-    let rname = concept_name(&rc, "RESULTAT");
-    let r = rc.result().map_err(|e| occ.locate(e, "RESULTAT"))?;
-    let model = r.model.model().map_err(|e| occ.locate(e, "RESULTAT"))?;
-    let mesh = model.mesh_concept.mesh().unwrap_or_else(|_| model.current_mesh());
-    if mesh.nnodes() != model.mesh.nnodes() {
-        return Err(occ.err("RESULTAT", format!("the mesh of result {rname} changed since its model was made")));
+/// The part of the mesh an occurrence restricts the fields to (GROUP_MA, MAILLE, GROUP_NO; TOUT='OUI'
+/// or nothing: all of it).
+fn selection(occ: &Args, mesh: &Mesh, mesh_name: &str) -> Result<Selection> {
+    let by_cells = occ.has("GROUP_MA") || occ.has("MAILLE");
+    let by_nodes = occ.has("GROUP_NO");
+    if !by_cells && !by_nodes {
+        let _ = occ.text("TOUT");
+        return Ok(Selection::all());
     }
-    out.use_mesh(occ, "RESULTAT", concept_name(&model.mesh_concept, "MAILLAGE"), mesh.clone())?;
-    let steps = selected_steps(&r, occ, &rname)?;
+    let mut nodes = vec![false; mesh.nnodes()];
+    let mut cells = vec![false; mesh.ncells()];
+    for n in crate::stages::select::select_nodes(mesh, occ, mesh_name)? {
+        nodes[n] = true;
+    }
+    if by_cells {
+        for c in crate::stages::select::select_cells(mesh, occ, mesh_name)? {
+            cells[c] = true;
+        }
+    }
+    Ok(Selection { nodes: Some(nodes), cells: Some(cells) })
+}
 
-    // Which fields, under which MED names.
-    let (explicit, symbols) = selected_fields(&steps, occ);
-    let med_names: Vec<String> = if occ.has("NOM_CHAM_MED") {
+/// The component indices NOM_CMP picks in a field (all without NOM_CMP); marks the names found.
+fn picked_components(components: &[String], nom_cmp: &[String], used: &mut [bool]) -> Vec<usize> {
+    if nom_cmp.is_empty() {
+        return (0..components.len()).collect();
+    }
+    let mut v = Vec::new();
+    for (j, c) in nom_cmp.iter().enumerate() {
+        if let Some(k) = components.iter().position(|x| x == c) {
+            used[j] = true;
+            v.push(k);
+        }
+    }
+    v
+}
+
+/// The MED name of each printed field: NOM_CHAM_MED, else the result's prefix and the symbol.
+fn med_names(occ: &Args, explicit: bool, symbols: &[String], rname: &str) -> Result<Vec<String>> {
+    let names: Vec<String> = if occ.has("NOM_CHAM_MED") {
         let given = occ.texts("NOM_CHAM_MED");
-        if !explicit || given.len() != symbols.len() {
+        if occ.has("RESULTAT") && (!explicit || given.len() != symbols.len()) {
             return Err(occ.err(
                 "NOM_CHAM_MED",
                 format!("give as many NOM_CHAM_MED as NOM_CHAM ({} for {})", given.len(), symbols.len()),
@@ -140,66 +148,59 @@ fn plan_result(out: &mut MedOut, occ: &Args) -> Result<()> {
                 }
                 p.to_string()
             }
-            None => rname.clone(),
+            None => rname.to_string(),
         };
         symbols.iter().map(|s| med_field_name(&prefix, s)).collect()
     };
-    let kw_cham = if explicit { "NOM_CHAM" } else { "RESULTAT" };
-    for m in &med_names {
+    for m in &names {
         if m.is_empty() || m.len() > 64 || !m.is_ascii() {
-            return Err(occ.err(
-                if occ.has("NOM_CHAM_MED") { "NOM_CHAM_MED" } else { kw_cham },
-                format!("'{m}' is not a MED field name (1 to 64 ASCII characters)"),
-            ));
+            let kw = if occ.has("NOM_CHAM_MED") { "NOM_CHAM_MED" } else { "RESULTAT" };
+            return Err(occ.err(kw, format!("'{m}' is not a MED field name (1 to 64 ASCII characters)")));
         }
     }
+    Ok(names)
+}
 
+/// Collect the fields of one RESULTAT occurrence.
+fn plan_result(out: &mut MedOut, occ: &Args) -> Result<()> {
+    let rc = occ.req_concept("RESULTAT")?;
+    let rname = concept_name(&rc, "RESULTAT");
+    let r = rc.result().map_err(|e| occ.locate(e, "RESULTAT"))?;
+    let model = r.model.model().map_err(|e| occ.locate(e, "RESULTAT"))?;
+    let mesh = model.mesh_concept.mesh().unwrap_or_else(|_| model.current_mesh());
+    if mesh.nnodes() != model.mesh.nnodes() {
+        return Err(occ.err("RESULTAT", format!("the mesh of result {rname} changed since its model was made")));
+    }
+    let mesh_name = concept_name(&model.mesh_concept, "MAILLAGE");
+    out.use_mesh(occ, "RESULTAT", mesh_name.clone(), mesh.clone())?;
+    let sel = selection(occ, &mesh, &mesh_name)?;
+    let steps = selected_steps(&r, occ, &rname)?;
+    let (explicit, symbols) = selected_fields(&steps, occ);
+    let names = med_names(occ, explicit, &symbols, &rname)?;
+    let kw_cham = if explicit { "NOM_CHAM" } else { "RESULTAT" };
     let nom_cmp = occ.texts("NOM_CMP");
     let mut cmp_used = vec![false; nom_cmp.len()];
-    let mut skipped = Vec::new();
-    let nn = mesh.nnodes();
-    'fields: for (sym, med_name) in symbols.iter().zip(&med_names) {
-        let mut field_comps: Option<&Vec<String>> = None;
-        let mut picked: Vec<(usize, String)> = Vec::new();
+    'fields: for (sym, med_name) in symbols.iter().zip(&names) {
+        let mut comps: Option<&Vec<String>> = None;
+        let mut picked: Vec<usize> = Vec::new();
         let mut out_steps = Vec::new();
         let mut missing = Vec::new();
+        let mut outside = Vec::new();
         for st in &steps {
-            let (components, values) = match st.fields.get(sym) {
-                None => {
-                    missing.push(st.nume_ordre.to_string());
-                    continue;
-                }
-                Some(Field::Node { components, values }) => (components, values),
-                Some(other) if explicit => {
-                    return Err(occ.err(
-                        "NOM_CHAM",
-                        format!(
-                            "{sym} of result {rname} is an {} field: writing cell fields to MED is not supported yet \
-                             (node fields are)",
-                            field_kind(other)
-                        ),
-                    ))
-                }
-                Some(other) => {
-                    skipped.push(format!("{sym} ({})", field_kind(other)));
-                    continue 'fields;
-                }
+            let Some(field) = st.fields.get(sym) else {
+                missing.push(st.nume_ordre.to_string());
+                continue;
             };
-            match field_comps {
+            let components = match field {
+                Field::Node { components, .. }
+                | Field::Elno { components, .. }
+                | Field::Elga { components, .. }
+                | Field::Elem { components, .. } => components,
+            };
+            match comps {
                 None => {
-                    field_comps = Some(components);
-                    picked = if nom_cmp.is_empty() {
-                        components.iter().cloned().enumerate().collect()
-                    } else {
-                        let mut v = Vec::new();
-                        for (j, c) in nom_cmp.iter().enumerate() {
-                            if let Some(k) = components.iter().position(|x| x == c) {
-                                cmp_used[j] = true;
-                                v.push((k, c.clone()));
-                            }
-                        }
-                        v
-                    };
+                    comps = Some(components);
+                    picked = picked_components(components, &nom_cmp, &mut cmp_used);
                     if picked.is_empty() {
                         out.alarm(format!(
                             "field {sym} of result {rname} has none of the components {} (it has {}): not written",
@@ -222,55 +223,53 @@ fn plan_result(out: &mut MedOut, occ: &Args) -> Result<()> {
                 }
                 Some(_) => {}
             }
-            let nco = components.len();
-            if values.len() != nn * nco {
-                return Err(occ.err(
-                    kw_cham,
-                    format!(
-                        "field {sym} of result {rname} at order {}: {} values for {nn} nodes x {nco} components",
-                        st.nume_ordre,
-                        values.len()
-                    ),
-                ));
-            }
-            // As Code_Aster's `ircmpn`: a node carrying any of the components is written with all of them,
-            // those it lacks as 0 (the simple field's initial value); a node with none would need a profile.
-            let mut v = Vec::with_capacity(nn * picked.len());
-            for i in 0..nn {
-                if !picked.iter().any(|(k, _)| values[i * nco + k].is_finite()) {
-                    return Err(occ.err(
-                        kw_cham,
-                        format!(
-                            "field {sym} of result {rname} at order {}: node {} has none of the components written; \
-                             node fields defined on part of the mesh (MED profiles) are not supported yet",
-                            st.nume_ordre, mesh.node_names[i]
-                        ),
-                    ));
-                }
-                for (k, _) in &picked {
-                    let x = values[i * nco + k];
-                    v.push(if x.is_finite() { x } else { 0.0 });
-                }
+            let blocks = blocks_of(field, &mesh, Some(&model), &picked, &sel, &mut out.localizations).map_err(|e| {
+                occ.err(kw_cham, format!("field {sym} of result {rname} at order {}: {e}", st.nume_ordre))
+            })?;
+            if blocks.is_empty() {
+                outside.push(st.nume_ordre.to_string());
+                continue;
             }
             let numdt = i32::try_from(st.nume_ordre)
                 .map_err(|_| occ.err(kw_cham, format!("order number {} does not fit in MED", st.nume_ordre)))?;
-            out_steps.push((numdt, st.inst, v));
+            out_steps.push(FieldStep { numdt, numit: numdt, time: st.inst, blocks });
+        }
+        if !outside.is_empty() {
+            out.alarm(format!(
+                "field {sym} of result {rname} has no value on the selected part of the mesh at order {}: not written \
+                 there",
+                outside.join(", ")
+            ));
         }
         if out_steps.is_empty() {
-            if explicit {
+            if explicit && outside.is_empty() {
+                let has: Vec<String> =
+                    r.steps.iter().filter(|s| s.fields.contains_key(sym)).map(|s| s.nume_ordre.to_string()).collect();
+                if has.is_empty() {
+                    return Err(occ.err("NOM_CHAM", format!("result {rname} has no field {sym} at any order")));
+                }
+                let kw = ["NUME_ORDRE", "LIST_ORDRE", "INST", "LIST_INST"]
+                    .into_iter()
+                    .find(|k| occ.has_if_declared(k))
+                    .unwrap_or("NOM_CHAM");
                 return Err(occ.err(
-                    "NOM_CHAM",
-                    format!("result {rname} has no field {sym} at the selected steps (order {})", missing.join(", ")),
+                    kw,
+                    format!(
+                        "result {rname} has no field {sym} at the selected order(s) {} (it has it at order(s) {})",
+                        missing.join(", "),
+                        has.join(", ")
+                    ),
                 ));
             }
             continue;
         }
         if !missing.is_empty() {
-            out.alarm(format!("field {sym} of result {rname} is not computed at order {}", missing.join(", ")));
+            out.alarm(format!("field {sym} of result {rname} is not written at order {}", missing.join(", ")));
         }
-        out.fields.push(FieldOut {
-            med_name: med_name.clone(),
-            components: picked.into_iter().map(|(_, c)| c).collect(),
+        out.add(MedField {
+            name: med_name.clone(),
+            mesh_name: mesh_name.clone(),
+            components: picked.iter().map(|&k| comps.expect("set with picked")[k].clone()).collect(),
             steps: out_steps,
         });
     }
@@ -279,12 +278,50 @@ fn plan_result(out: &mut MedOut, occ: &Args) -> Result<()> {
             return Err(occ.err("NOM_CMP", format!("component {c} is in none of the fields written for {rname}")));
         }
     }
-    if !skipped.is_empty() {
-        out.alarm(format!(
-            "result {rname}: {} not written (cell fields are not supported yet in MED output)",
-            skipped.join(", ")
+    // IMPR_NOM_VARI='OUI' (the default): Code_Aster adds VARI_ELGA_NOMME, the internal variables under the
+    // names of the behaviour's variables, which our results do not know: said, not written.
+    if occ.text("IMPR_NOM_VARI") == Some("OUI") && symbols.iter().any(|s| s == "VARI_ELGA") {
+        out.info.push_str(&format!(
+            " IMPR_RESU: VARI_ELGA of {rname} is written with components V1, V2, ...; VARI_ELGA_NOMME (the \
+             variables under their names) is not written\n"
         ));
     }
+    Ok(())
+}
+
+/// Collect the field of one CHAM_GD occurrence (a cham_no or cham_elem), written without step
+/// (numdt = numit = -1) under NOM_CHAM_MED or its concept name.
+fn plan_field(out: &mut MedOut, occ: &Args) -> Result<()> {
+    let fc = occ.req_concept("CHAM_GD")?;
+    let fname = concept_name(&fc, "CHAM_GD");
+    let f = fc.field().map_err(|e| occ.locate(e, "CHAM_GD"))?;
+    if f.functions.is_some() {
+        return Err(occ.err("CHAM_GD", format!("{fname} is a field of functions: only fields of reals are written")));
+    }
+    let mesh = f.mesh_concept.mesh().map_err(|e| occ.locate(e, "CHAM_GD"))?;
+    let mesh_name = concept_name(&f.mesh_concept, "MAILLAGE");
+    out.use_mesh(occ, "CHAM_GD", mesh_name.clone(), mesh.clone())?;
+    let sel = selection(occ, &mesh, &mesh_name)?;
+    let names = med_names(occ, true, std::slice::from_ref(&fname), &fname)?;
+    let name = if occ.has("NOM_CHAM_MED") { names[0].clone() } else { fname.clone() };
+    let nom_cmp = occ.texts("NOM_CMP");
+    let mut used = vec![false; nom_cmp.len()];
+    let picked = picked_components(f.field.components(), &nom_cmp, &mut used);
+    if let Some((c, _)) = nom_cmp.iter().zip(&used).find(|(_, u)| !**u) {
+        return Err(occ.err("NOM_CMP", format!("field {fname} has no component {c}")));
+    }
+    let blocks = blocks_of(&f.field, &mesh, None, &picked, &sel, &mut out.localizations)
+        .map_err(|e| occ.err("CHAM_GD", format!("field {fname}: {e}")))?;
+    if blocks.is_empty() {
+        out.alarm(format!("field {fname} has no value on the selected part of the mesh: not written"));
+        return Ok(());
+    }
+    out.add(MedField {
+        name,
+        mesh_name,
+        components: picked.iter().map(|&k| f.field.components()[k].clone()).collect(),
+        steps: vec![FieldStep { numdt: -1, numit: -1, time: 0.0, blocks }],
+    });
     Ok(())
 }
 
@@ -306,12 +343,15 @@ pub fn impr_resu_med(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         if occ.has("RESULTAT") {
             plan_result(&mut out, occ)?;
         }
+        if occ.has("CHAM_GD") {
+            plan_field(&mut out, occ)?;
+        }
         if let (Some("OUI"), Some((name, mesh))) = (occ.text("INFO_MAILLAGE"), &out.mesh) {
             info.push_str(&mesh.describe(name));
         }
     }
     let Some((mesh_name, mesh)) = out.mesh.take() else {
-        return Err(a.err("RESU", "nothing to print: give MAILLAGE or RESULTAT"));
+        return Err(a.err("RESU", "nothing to print: give MAILLAGE, RESULTAT or CHAM_GD"));
     };
     let unit = a.int("UNITE").unwrap_or(80);
     let path = ctx.io.unit_path(unit, true).map_err(|e| a.locate(e, "UNITE"))?;
@@ -349,9 +389,8 @@ pub fn impr_resu_med(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         } else {
             med::write_mesh(&tmp, &mesh, &mesh_name)?;
         }
-        for f in &out.fields {
-            let comps: Vec<&str> = f.components.iter().map(String::as_str).collect();
-            med::write_node_field(&tmp, &mesh_name, &f.med_name, &comps, &f.steps)?;
+        if !out.fields.is_empty() {
+            med::write_fields(&tmp, &out.fields, &out.localizations)?;
         }
         std::fs::rename(&tmp, &path)
             .map_err(|e| Error::io(format!("unit {unit}: cannot move the MED file into place: {e}")))
@@ -361,6 +400,7 @@ pub fn impr_resu_med(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         return Err(a.locate(e, "UNITE"));
     }
     let mut mess = info;
+    mess.push_str(&out.info);
     mess.push_str(&out.alarms);
     if !mess.is_empty() {
         ctx.io.mess(&mess);

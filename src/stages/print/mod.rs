@@ -1,8 +1,11 @@
-//! IMPR_RESU: results and meshes to MED (`med`), as text (`text`, FORMAT='RESULTAT') and to GMSH (`gmsh`);
+//! IMPR_RESU: results and meshes to MED (`med`, `med_fields`), as text (`text`, FORMAT='RESULTAT') and to GMSH
+//! (`gmsh`); LIRE_RESU and LIRE_CHAMP from MED (`lire`);
 //! the selection of steps and fields the formats share.
 
 pub mod gmsh;
+pub mod lire;
 pub mod med;
+pub mod med_fields;
 pub mod text;
 
 use crate::catalog::args::Args;

@@ -1,7 +1,8 @@
 //! Answers a new user found wrong or silent, each against the behaviour of Code_Aster: TEST_RESU on a
 //! CHAM_NO, plane stress of an incompressible material, the alarms Code_Aster gives (MODELE1_3,
-//! MODELE1_4, ALGORITH3_41) with their count at the end of the run, and catalogue facts (CALC_TABLE
-//! UNIQUE's FORMAT_R, LIRE_FONCTION TYPE='NAPPE' with INTERPOL_FONC, an integral float for an integer).
+//! MODELE1_4, ALGORITH3_41) with their count at the end of the run, IMPR_RESU naming the step a field
+//! lacks, and catalogue facts (CALC_TABLE UNIQUE's FORMAT_R, LIRE_FONCTION TYPE='NAPPE' with
+//! INTERPOL_FONC, an integral float for an integer).
 
 use crate::common::*;
 
@@ -109,14 +110,39 @@ fn calc_champ_at_a_missing_step_is_told() {
          R = CALC_CHAMP(reuse=R, RESULTAT=R, CONTRAINTE='SIGM_NOEU', INST=5.0)\n\
          R = CALC_CHAMP(reuse=R, RESULTAT=R, DEFORMATION='EPSI_ELGA', INST=0.0)\n\
          TEST_RESU(RESU=_F(RESULTAT=R, NUME_ORDRE=1, NOM_CHAM='EPSI_ELGA', MAILLE='M7', POINT=1, NOM_CMP='EPXX',\n\
-                           VALE_CALC=4.55e-5))",
+                           VALE_CALC=4.55e-5))\n\
+         IMPR_RESU(FORMAT='MED', RESU=_F(RESULTAT=R, NOM_CHAM='SIGM_ELNO'))",
     );
     let (status, mess, _) = run_on_box(&dir, ("QUAD4", "2,1", "2,1"), &comm);
-    assert!(status.success(), "{mess}");
+    assert!(!status.success(), "{mess}");
     assert!(mess.contains("<A> <ALGORITH3_41> CALC_CHAMP: result R has no order 3: nothing is computed"), "{mess}");
     assert!(mess.contains("<A> <ALGORITH3_41> CALC_CHAMP: result R has no instant 5.0"), "{mess}");
     assert!(mess.contains("1 OK, 0 NOOK"), "an instant the result has is computed: {mess}");
+    assert!(mess.contains("IMPR_RESU: RESU/NOM_CHAM: result R has no field SIGM_ELNO at any order"), "{mess}");
     assert!(mess.contains("<A> 2 alarm(s) in this run: ALGORITH3_41 x2"), "{mess}");
+}
+
+/// IMPR_RESU of a field at a step that lacks it names the step (NUME_ORDRE) and the steps that have it.
+#[test]
+fn impr_resu_names_the_step_a_field_lacks() {
+    let dir = scratch!("impr_nume_ordre");
+    let comm = plate(
+        "D_PLAN",
+        0.3,
+        "L = DEFI_LIST_REEL(DEBUT=0.0, INTERVALLE=_F(JUSQU_A=2.0, NOMBRE=2))\n\
+         R = STAT_NON_LINE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=(_F(CHARGE=BLOC), _F(CHARGE=TRAC)),\n\
+                           COMPORTEMENT=_F(RELATION='ELAS'), INCREMENT=_F(LIST_INST=L))\n\
+         R = CALC_CHAMP(reuse=R, RESULTAT=R, CONTRAINTE='SIGM_ELNO', NUME_ORDRE=1)\n\
+         IMPR_RESU(FORMAT='MED', RESU=_F(RESULTAT=R, NOM_CHAM='SIGM_ELNO', NUME_ORDRE=2))",
+    );
+    let (status, mess, _) = run_on_box(&dir, ("QUAD4", "2,1", "2,1"), &comm);
+    assert!(!status.success(), "{mess}");
+    assert!(
+        mess.contains(
+            "IMPR_RESU: RESU/NUME_ORDRE: result R has no field SIGM_ELNO at the selected order(s) 2 (it has it at order(s) 1)"
+        ),
+        "{mess}"
+    );
 }
 
 /// Catalogue facts of Code_Aster: CALC_TABLE's UNIQUE takes FORMAT_R (values compared as written);

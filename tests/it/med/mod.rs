@@ -1,6 +1,8 @@
-//! Meshes and results on disk: MED round trips, the reference MED tools and meshio, the mesh stages
-//! (LIRE_MAILLAGE, DEFI_GROUP, CREA_MAILLAGE, `aster mesh`), and the printed formats (RESULTAT, GMSH, tables).
+//! Meshes and results on disk: MED round trips (meshes, node fields, cell fields with LIRE_RESU), the
+//! reference MED tools and meshio, the mesh stages (LIRE_MAILLAGE, DEFI_GROUP, CREA_MAILLAGE,
+//! `aster mesh`), and the printed formats (RESULTAT, GMSH, tables).
 mod aster_mail;
+mod cell_fields;
 mod crea_maillage;
 mod mesh_stages;
 mod print_formats;

@@ -219,7 +219,7 @@ IMPR_RESU(FORMAT='MED', UNITE=81, RESU=_F(RESULTAT=RESU, NOM_CHAM='SIGM_NOEU', N
     run_scene_ok(&dir, "occ", extra, &[(80, &a), (81, &b)]);
     assert_eq!(med::list_meshes(&a).unwrap(), vec!["MA"]);
     assert_eq!(med::list_fields(&a).unwrap(), vec!["RESU____DEPL", "RESU____SIGM_NOEU"]);
-    // Unit 81: DX only (SIGM_NOEU has no DX, SIGM_ELNO is a cell field: alarms),
+    // Unit 81: DX only (SIEF_ELGA, SIGM_ELNO and SIGM_NOEU have no DX: alarms),
     // then STRESS added to the same file by the next call.
     assert_eq!(med::list_meshes(&b).unwrap(), vec!["MA"]);
     assert_eq!(med::list_fields(&b).unwrap(), vec!["RESU____DEPL", "STRESS"]);
@@ -234,7 +234,7 @@ IMPR_RESU(FORMAT='MED', UNITE=81, RESU=_F(RESULTAT=RESU, NOM_CHAM='SIGM_NOEU', N
     assert_eq!(bits(&stress.steps[0].2), bits(&sig.steps[0].2));
     let mess = std::fs::read_to_string(dir.join("occ.out/occ.mess")).unwrap();
     assert!(mess.contains("SIGM_NOEU of result RESU has none of the components DX"), "{mess}");
-    assert!(mess.contains("SIGM_ELNO (ELNO) not written"), "{mess}");
+    assert!(mess.contains("SIGM_ELNO of result RESU has none of the components DX"), "{mess}");
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -243,8 +243,6 @@ fn impr_resu_errors_are_located() {
     let dir = scratch!("errors");
     let out = dir.join("e.rmed");
     let cases = [
-        ("RESU=_F(RESULTAT=RESU, NOM_CHAM='SIGM_ELNO')", "NOM_CHAM", "is an ELNO field"),
-        ("RESU=_F(RESULTAT=RESU, GROUP_MA='DROITE')", "GROUP_MA", "MED profiles"),
         ("RESU=_F(RESULTAT=RESU, NUME_ORDRE=2)", "NUME_ORDRE", "no order number 2"),
         ("RESU=_F(RESULTAT=RESU, INST=5.0)", "INST", "no step at time 5"),
         ("RESU=_F(RESULTAT=RESU, NOM_CMP='DZ')", "NOM_CMP", "component DZ is in none"),
