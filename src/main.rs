@@ -60,9 +60,10 @@ enum Cmd {
         #[command(subcommand)]
         action: MeshCmd,
     },
-    /// Compare the meshes and node fields of two MED files (per field,
-    /// component and time step: max absolute and relative differences and
-    /// where). Exit code 0 within tolerance, 1 beyond, 2 on error.
+    /// Compare the meshes and every field of two MED files, node and cell
+    /// fields (per field, step, kind of entity and component: max absolute
+    /// and relative differences and where: node, cell, Gauss point, node of
+    /// cell). Exit code 0 within tolerance, 1 beyond, 2 on error.
     Diff {
         a: PathBuf,
         b: PathBuf,

@@ -395,3 +395,59 @@ fn mdump(path: &Path) -> Option<String> {
         }
     }
 }
+
+/// The corpus files that read a result with LIRE_RESU and otherwise use what we support run with every
+/// check OK (docs/corpus.md counts them).
+#[test]
+fn corpus_lire_resu_cases_pass() {
+    run_corpus_cases(&scratch!("corpus"), &[("zzzz165a", 6)]);
+}
+
+/// Result files Code_Aster wrote (zzzz165a.med: DEPL, VARI_ELNO on QUAD8; zzzz155d.med: DEPL, SIEF_ELGA
+/// on HE8_____FPG8, SIEF_ELNO on HEXA8) read by LIRE_RESU and written again by IMPR_RESU: `aster diff`
+/// against Code_Aster's file finds every cell field identical, point by point (our localizations are
+/// Code_Aster's), as docs/compare.md shows.
+#[test]
+fn code_aster_result_files_read_and_written_back() {
+    let corpus = root().join("../shared/corpus/astest-2025");
+    if !corpus.is_dir() {
+        println!("SKIP: {} is absent", corpus.display());
+        return;
+    }
+    let dir = scratch!("code_aster_files");
+    for (file, md, typ, resu, fields) in [
+        ("zzzz165a.med", "AXIS", "EVOL_NOLI", "00000027", &["DEPL", "VARI_ELNO"][..]),
+        ("zzzz155d.med", "3D", "EVOL_ELAS", "00000008", &["DEPL", "SIEF_ELGA", "SIEF_ELNO"][..]),
+    ] {
+        let read: Vec<String> = fields.iter().map(|f| format!("_F(NOM_CHAM=\"{f}\", NOM_RESU=\"{resu}\")")).collect();
+        let comm = format!(
+            "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT=\"MED\", UNITE=20)\n\
+             MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT=\"OUI\", PHENOMENE=\"MECANIQUE\", MODELISATION=\"{md}\"))\n\
+             RESU = LIRE_RESU(MODELE=MO, FORMAT=\"MED\", TYPE_RESU=\"{typ}\", UNITE=20, TOUT_ORDRE=\"OUI\",\n\
+                              FORMAT_MED=({}))\n\
+             IMPR_RESU(FORMAT=\"MED\", UNITE=80, RESU=_F(RESULTAT=RESU, NOM_RESU_MED=\"{resu}\"))\nFIN()\n",
+            read.join(", ")
+        );
+        let ca = corpus.join(file);
+        let ours = dir.join(format!("{file}.rmed"));
+        run(&dir, &file.replace('.', "_"), &comm, &[(20, &ca), (80, &ours)]);
+        let (code, out) = diff(&ca, &ours, &["--rtol", "0", "--atol", "0"]);
+        let rows: Vec<&str> = out.lines().filter(|l| l.starts_with(resu)).collect();
+        // Every field but zzzz155d's DEPL (below) is identical.
+        for f in fields.iter().filter(|f| !(file == "zzzz155d.med" && **f == "DEPL")) {
+            let name = format!("{resu}{f}");
+            let mine: Vec<&&str> = rows.iter().filter(|l| l.split_whitespace().next() == Some(&name)).collect();
+            assert!(!mine.is_empty() && mine.iter().all(|l| l.ends_with(" OK")), "{name}:\n{out}");
+        }
+        if file == "zzzz165a.med" {
+            assert_eq!(code, 0, "{out}");
+        } else {
+            // Code_Aster's DEPL lives on a profile of 18 of the 27 nodes; LIRE_RESU's PROL_ZERO fills the
+            // others: the supports differ, and diff says so.
+            assert_eq!(code, 1, "{out}");
+            assert!(out.contains("00000008DEPL") && out.contains("18 x 1 values vs 27 x 1"), "{out}");
+            let locs = med::read_localizations(&ours).unwrap();
+            assert_eq!(locs.keys().collect::<Vec<_>>(), vec!["HE8_____FPG8"]);
+        }
+    }
+}
