@@ -354,13 +354,12 @@ fn write_one(
 
 /// Names of the fields of a file with their mesh and components.
 pub fn field_infos(path: &Path) -> Result<Vec<(String, String, Vec<String>)>> {
-    let file = open_read(path)?;
-    if !file.link_exists("CHA") {
+    let names = super::list_fields(path)?;
+    if names.is_empty() {
         return Ok(Vec::new());
     }
+    let file = open_read(path)?;
     let cha = file.group("CHA").map_err(|e| h5err(path, "group /CHA", e))?;
-    let mut names = cha.member_names().map_err(|e| h5err(path, "listing /CHA", e))?;
-    names.sort();
     let mut out = Vec::new();
     for n in names {
         let fg = cha.group(&n).map_err(|e| h5err(path, &format!("/CHA/{n}"), e))?;

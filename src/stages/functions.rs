@@ -151,9 +151,15 @@ pub fn defi_nappe(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         }
     }
     let nom_para_fonc = functions.first().map(|f| f.nom_para.clone()).unwrap_or(nom_para_fonc);
-    let n = Nappe::new(
+    Ok(Some(ConceptData::Nappe(nappe_of(a, &nom_para_fonc, params, functions)?)))
+}
+
+/// The nappe of functions at the parameter values `params`: NOM_PARA, NOM_RESU, INTERPOL and PROL_* of
+/// the command (DEFI_NAPPE, LIRE_FONCTION TYPE='NAPPE').
+fn nappe_of(a: &Args, nom_para_fonc: &str, params: Vec<f64>, functions: Vec<Function>) -> Result<Nappe> {
+    Nappe::new(
         a.req_text("NOM_PARA")?,
-        &nom_para_fonc,
+        nom_para_fonc,
         a.text("NOM_RESU").unwrap_or("TOUTRESU"),
         params,
         functions,
@@ -161,8 +167,7 @@ pub fn defi_nappe(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         prol_of(a, "PROL_GAUCHE", Prol::Exclu),
         prol_of(a, "PROL_DROITE", Prol::Exclu),
     )
-    .map_err(|e| e.at(a.span))?;
-    Ok(Some(ConceptData::Nappe(n)))
+    .map_err(|e| e.at(a.span))
 }
 
 /// The most values DEFI_LIST_REEL and DEFI_LIST_ENTI make (80 MB of reals): more is a mistake in
@@ -619,18 +624,7 @@ pub fn lire_fonction(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             functions.push(f);
         }
         let params = pick(a, "INDIC_PARA")?;
-        let n = Nappe::new(
-            a.req_text("NOM_PARA")?,
-            nom_para_fonc,
-            a.text("NOM_RESU").unwrap_or("TOUTRESU"),
-            params,
-            functions,
-            interp_of(a, "INTERPOL", (Interp::Lin, Interp::Lin)),
-            prol_of(a, "PROL_GAUCHE", Prol::Exclu),
-            prol_of(a, "PROL_DROITE", Prol::Exclu),
-        )
-        .map_err(|e| e.at(a.span))?;
-        return Ok(Some(ConceptData::Nappe(n)));
+        return Ok(Some(ConceptData::Nappe(nappe_of(a, nom_para_fonc, params, functions)?)));
     }
     let x = pick(a, "INDIC_PARA")?;
     let y = pick(a, "INDIC_RESU")?;

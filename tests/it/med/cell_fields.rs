@@ -87,15 +87,20 @@ FIN()
 /// SIXX at point 9 of cell M13 (the first QUAD8) of the statics under FX = 100, as computed.
 const SIXX_M1_9: f64 = 100.92097350642963;
 
+/// TEST_RESU of [`SIXX_M1_9`] on the result read back (R2).
+fn sixx_check() -> String {
+    format!(
+        "TEST_RESU(RESU=_F(RESULTAT=R2, NUME_ORDRE=1, NOM_CHAM=\"SIEF_ELGA\", MAILLE=\"M13\", POINT=9, \
+         NOM_CMP=\"SIXX\", VALE_CALC={SIXX_M1_9:?}))"
+    )
+}
+
 #[test]
 fn statics_fields_go_through_med_and_back() {
     let dir = scratch!("statics");
     let mesh = box_mesh(&dir, "QUAD8", "4,2", "2,1");
     let (a, b) = (dir.join("a.rmed"), dir.join("b.rmed"));
-    let test = format!(
-        "TEST_RESU(RESU=_F(RESULTAT=R2, NUME_ORDRE=1, NOM_CHAM=\"SIEF_ELGA\", MAILLE=\"M13\", POINT=9, \
-         NOM_CMP=\"SIXX\", VALE_CALC={SIXX_M1_9:?}))"
-    );
+    let test = sixx_check();
     let mess = run(&dir, "statics", &statics(100.0, "", &test), &[(20, &mesh), (80, &a), (81, &b)]);
     assert!(mess.contains(" 1 OK, 0 NOOK"), "{mess}");
     assert_round_trip(
@@ -229,10 +234,7 @@ fn fields_on_part_of_the_mesh_use_profiles() {
     let dir = scratch!("profiles");
     let mesh = box_mesh(&dir, "QUAD8", "4,2", "2,1");
     let (a, b) = (dir.join("a.rmed"), dir.join("b.rmed"));
-    let test = format!(
-        "TEST_RESU(RESU=_F(RESULTAT=R2, NUME_ORDRE=1, NOM_CHAM=\"SIEF_ELGA\", MAILLE=\"M13\", POINT=9, \
-         NOM_CMP=\"SIXX\", VALE_CALC={SIXX_M1_9:?}))"
-    );
+    let test = sixx_check();
     // PROL_ZERO='NON': the nodes the file has no value at get none (they would get 0 with 'OUI').
     let src = statics_read(100.0, ", GROUP_MA=\"PART\"", ", PROL_ZERO=\"NON\"", "");
     run(&dir, "part", &src, &[(20, &mesh), (80, &a), (81, &b)]);
