@@ -299,6 +299,26 @@ impl Table {
     }
 }
 
+/// The two blocks (of the same kind, `per_entity` values of `nco` components per entity) restricted to
+/// the entities both have, in the order of `a`.
+fn on_common_entities(a: &Block, b: &Block, nco: usize) -> (Block, Block) {
+    let in_b: std::collections::HashMap<usize, usize> = b.entities.iter().enumerate().map(|(i, &e)| (e, i)).collect();
+    let w = a.per_entity * nco;
+    let (mut ra, mut rb) = (
+        Block { entities: Vec::new(), values: Vec::new(), ..a.clone() },
+        Block { entities: Vec::new(), values: Vec::new(), ..b.clone() },
+    );
+    for (i, &e) in a.entities.iter().enumerate() {
+        if let Some(&j) = in_b.get(&e) {
+            ra.entities.push(e);
+            rb.entities.push(e);
+            ra.values.extend_from_slice(&a.values[i * w..(i + 1) * w]);
+            rb.values.extend_from_slice(&b.values[j * w..(j + 1) * w]);
+        }
+    }
+    (ra, rb)
+}
+
 /// Compare two MED files: meshes, and every field of every support (nodes, cells, nodes of cells,
 /// integration points), per component, step and kind of entity: the largest absolute and relative
 /// differences and where they are.
@@ -407,7 +427,7 @@ pub fn diff_files(pa: &Path, pb: &Path, tol: Tolerance) -> Result<Report> {
                         continue;
                     }
                 }
-                if ba.entities != bb.entities || ba.per_entity != bb.per_entity {
+                if ba.per_entity != bb.per_entity {
                     table.note(
                         name,
                         format!(
@@ -421,6 +441,26 @@ pub fn diff_files(pa: &Path, pb: &Path, tol: Tolerance) -> Result<Report> {
                     within = false;
                     continue;
                 }
+                // Values on other entities (another profile): the entities of one file only are a
+                // difference, the common ones are compared.
+                let common;
+                let (ba, bb) = if ba.entities != bb.entities {
+                    let (ca, cb) = on_common_entities(ba, bb, nco);
+                    table.note(
+                        name,
+                        format!(
+                            "step {step}: {kind}: {} entities only in A, {} only in B, {} in both",
+                            ba.entities.len() - ca.entities.len(),
+                            bb.entities.len() - ca.entities.len(),
+                            ca.entities.len()
+                        ),
+                    );
+                    within = false;
+                    common = (ca, cb);
+                    (&common.0, &common.1)
+                } else {
+                    (ba, bb)
+                };
                 for (k, comp) in a.components.iter().enumerate() {
                     let e = extremes(&ba.values, &bb.values, nco, k, tol);
                     max_abs = max_abs.max(e.max_abs);
@@ -485,6 +525,26 @@ mod tests {
         let e1 = extremes(&a, &b, 2, 1, tol);
         assert_eq!((e1.at_abs, e1.max_abs, e1.beyond), (0, 0.5, 1));
         assert!((e1.max_rel - 0.5 / 10.5).abs() < 1e-15);
+    }
+
+    #[test]
+    fn common_entities_keep_their_values() {
+        let blk = |entities: Vec<usize>, values: Vec<f64>| Block {
+            support: Support::Node,
+            cell: None,
+            localization: None,
+            per_entity: 1,
+            entities,
+            values,
+        };
+        // Two components; A on nodes 0, 2, 5; B on nodes 5, 0, 7.
+        let a = blk(vec![0, 2, 5], vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+        let b = blk(vec![5, 0, 7], vec![50.0, 60.0, 10.0, 20.0, 0.0, 0.0]);
+        let (ca, cb) = on_common_entities(&a, &b, 2);
+        assert_eq!(ca.entities, vec![0, 5]);
+        assert_eq!(cb.entities, vec![0, 5]);
+        assert_eq!(ca.values, vec![1.0, 2.0, 5.0, 6.0]);
+        assert_eq!(cb.values, vec![10.0, 20.0, 50.0, 60.0]);
     }
 
     #[test]
