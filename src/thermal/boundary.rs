@@ -75,22 +75,7 @@ pub fn skin_load(
     q: &PointLaw<'_, BoundaryPoint>,
 ) -> Result<(Vec<f64>, Vec<f64>), ThermalError> {
     let pts = skin_points(m, t, coords)?;
-    let n = t.nnodes();
-    let mut load = vec![0.0; n];
-    let mut tang = vec![0.0; n * n];
-    for p in &pts {
-        let tp = temps.map(|v| p.n.iter().zip(v).map(|(a, b)| a * b).sum()).unwrap_or(0.0);
-        let (qv, dq) = q(p, tp)?;
-        for a in 0..n {
-            load[a] += p.w * qv * p.n[a];
-            if dq != 0.0 {
-                for b in 0..n {
-                    tang[a * n + b] += p.w * dq * p.n[a] * p.n[b];
-                }
-            }
-        }
-    }
-    Ok((load, tang))
+    super::element::density(&pts, t.nnodes(), temps, |p| (p.w, &p.n), q)
 }
 
 /// The radiation density `σ ε ((T_ext + 273.15)⁴ − (T + 273.15)⁴)` and its derivative in `T`.

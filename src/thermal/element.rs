@@ -358,17 +358,30 @@ pub fn source(
     s: &PointLaw<'_, GaussGeom>,
 ) -> Result<(Vec<f64>, Vec<f64>), ThermalError> {
     let pts = m.points(t, coords, &m.rigi_rule(t))?;
-    let n = t.nnodes();
+    density(&pts, t.nnodes(), temps, |p| (p.w, &p.n), s)
+}
+
+/// A density `f(point, T)` integrated over points of weight `w` and shape values `N` (`geom(p)`): the
+/// load `∫ f N` and its derivative `∫ ∂f/∂T N Nᵀ`; `temps` None where `f` does not depend on the
+/// temperature (it is then given 0). Volume sources and boundary flux densities alike.
+pub(crate) fn density<P>(
+    pts: &[P],
+    n: usize,
+    temps: Option<&[f64]>,
+    geom: impl Fn(&P) -> (f64, &[f64]),
+    f: &PointLaw<'_, P>,
+) -> Result<(Vec<f64>, Vec<f64>), ThermalError> {
     let mut load = vec![0.0; n];
     let mut tang = vec![0.0; n * n];
-    for p in &pts {
-        let tp = temps.map(|v| (0..n).map(|a| p.n[a] * v[a]).sum()).unwrap_or(0.0);
-        let (sv, ds) = s(p, tp)?;
+    for p in pts {
+        let (w, shape) = geom(p);
+        let tp = temps.map(|v| shape.iter().zip(v).map(|(a, b)| a * b).sum()).unwrap_or(0.0);
+        let (fv, df) = f(p, tp)?;
         for a in 0..n {
-            load[a] += p.w * sv * p.n[a];
-            if ds != 0.0 {
+            load[a] += w * fv * shape[a];
+            if df != 0.0 {
                 for b in 0..n {
-                    tang[a * n + b] += p.w * ds * p.n[a] * p.n[b];
+                    tang[a * n + b] += w * df * shape[a] * shape[b];
                 }
             }
         }
