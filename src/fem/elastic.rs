@@ -6,7 +6,7 @@ use super::assembly::{Assembler, ElementDofs};
 use super::dofs::{component_index, DofNumbering};
 use super::elasticity::{self, IsoElastic, Modelisation};
 use super::field::Field;
-use super::physics::{Failure, Force, Load, Physics, Prediction, StepInfo};
+use super::physics::{keep, traction, Failure, Force, Load, Physics, Prediction, StepInfo};
 use crate::diag::Error;
 use crate::mesh::Mesh;
 use std::rc::Rc;
@@ -168,17 +168,7 @@ impl Physics for Elastic {
                         for &c in cells.iter() {
                             let dofs = self.skin_dofs(name, c)?;
                             let err = std::cell::RefCell::new(None);
-                            let fx = |x: &[f64; 3], _n: &[f64; 3]| -> [f64; 3] {
-                                let mut v = [0.0; 3];
-                                for (cn, val) in components {
-                                    let k = ["FX", "FY", "FZ"].iter().position(|s| s == cn).unwrap_or(2);
-                                    match val.at(x) {
-                                        Ok(r) => v[k] = r,
-                                        Err(e) => *err.borrow_mut() = Some(e),
-                                    }
-                                }
-                                v
-                            };
+                            let fx = |x: &[f64; 3], _n: &[f64; 3]| keep(&err, traction(components, x));
                             let fe = elasticity::boundary_force(md, mesh.cell_types[c], &coords_of(mesh, c), &fx)
                                 .map_err(|e| Error::runtime(e.to_string()))?;
                             if let Some(e) = err.into_inner() {

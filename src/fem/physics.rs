@@ -144,6 +144,25 @@ pub struct Residual<'a> {
     pub x: &'a [f64],
 }
 
+/// The traction of FORCE_FACE / FORCE_CONTOUR components (`FX`, `FY`, `FZ`) at a point.
+pub fn traction(components: &[(&str, Value)], x: &[f64; 3]) -> Result<[f64; 3], Error> {
+    let mut v = [0.0; 3];
+    for (cn, val) in components {
+        let k = ["FX", "FY", "FZ"].iter().position(|s| s == cn).unwrap_or(2);
+        v[k] = val.at(x)?;
+    }
+    Ok(v)
+}
+
+/// The value of `r`, or the default with the first error kept in `err`: for callbacks of the element
+/// routines, which cannot return an error (the caller returns the kept one after the call).
+pub fn keep<T: Default>(err: &std::cell::RefCell<Option<Error>>, r: Result<T, Error>) -> T {
+    r.unwrap_or_else(|e| {
+        err.borrow_mut().get_or_insert(e);
+        T::default()
+    })
+}
+
 /// A physics as the solving core drives it.
 pub trait Physics {
     /// The laws' internal variables at every point of the model, committed when a step converges.

@@ -14,7 +14,7 @@ use crate::fem::dofs::{Constraints, DofNumbering};
 use crate::fem::elastic::coords_of;
 use crate::fem::elasticity;
 use crate::fem::field::Field;
-use crate::fem::physics::{Condition, Failure, Force, Load, Physics, Prediction, StepInfo};
+use crate::fem::physics::{keep, traction, Condition, Failure, Force, Load, Physics, Prediction, StepInfo};
 use crate::mesh::Mesh;
 use crate::xfem::model::XfemModel;
 use std::collections::BTreeMap;
@@ -109,14 +109,6 @@ impl HmProblem {
 
 fn excit(msg: String) -> Error {
     Error::runtime(msg).at_keyword("EXCIT")
-}
-
-/// A value of a load evaluated inside a closure that cannot fail: the first error is kept for later.
-fn keep<T: Default>(err: &std::cell::RefCell<Option<Error>>, r: Result<T>) -> T {
-    r.unwrap_or_else(|e| {
-        err.borrow_mut().get_or_insert(e);
-        T::default()
-    })
 }
 
 impl Physics for HmProblem {
@@ -241,7 +233,7 @@ impl Physics for HmProblem {
         let (mesh, num) = (&*self.mesh, &self.numbering);
         let dim = self.kin.dim();
         let md = self.kin.mechanics();
-        let (t, dt) = (step.t1, step.dt());
+        let dt = step.dt();
         for load in loads {
             let name = &load.name;
             for item in &load.forces {
@@ -283,14 +275,7 @@ impl Physics for HmProblem {
                         for &c in cells.iter() {
                             let dofs = self.skin_cell(name, c)?;
                             let err = std::cell::RefCell::new(None);
-                            let fx = |x: &[f64; 3], _n: &[f64; 3]| -> [f64; 3] {
-                                let mut v = [0.0; 3];
-                                for (cn, val) in components {
-                                    let k = ["FX", "FY", "FZ"].iter().position(|s| s == cn).unwrap_or(2);
-                                    v[k] = keep(&err, val.at(x));
-                                }
-                                v
-                            };
+                            let fx = |x: &[f64; 3], _n: &[f64; 3]| keep(&err, traction(components, x));
                             let fe = elasticity::boundary_force(md, mesh.cell_types[c], &coords_of(mesh, c), &fx)
                                 .map_err(|e| Error::runtime(e.to_string()))?;
                             let pending = err.borrow_mut().take();
@@ -375,7 +360,6 @@ impl Physics for HmProblem {
                 }
             }
         }
-        let _ = t;
         Ok(())
     }
 

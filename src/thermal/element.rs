@@ -329,20 +329,7 @@ pub fn enthalpy_nl(
     beta: &Law<'_, f64>,
 ) -> Result<(Vec<f64>, Vec<f64>), ThermalError> {
     let pts = m.points(t, coords, &m.mass_rule(t))?;
-    let n = t.nnodes();
-    let mut resi = vec![0.0; n];
-    let mut tang = vec![0.0; n * n];
-    for p in &pts {
-        let tp: f64 = (0..n).map(|a| p.n[a] * temps[a]).sum();
-        let (b, db) = beta(tp)?;
-        for a in 0..n {
-            resi[a] += p.w * b * p.n[a];
-            for c in 0..n {
-                tang[a * n + c] += p.w * db * p.n[a] * p.n[c];
-            }
-        }
-    }
-    Ok((resi, tang))
+    density(&pts, t.nnodes(), Some(temps), |p| (p.w, &p.n), &|_, tp| beta(tp))
 }
 
 /// A density of the point and the temperature there, with its derivative in the temperature.
