@@ -1,5 +1,5 @@
 //! MODI_MAILLAGE: ORIE_PEAU (and its former spellings ORIE_PEAU_2D /
-//! ORIE_PEAU_3D), reorienting skin cells so that their normal points out of
+//! ORIE_PEAU_3D), TRANSLATION and ECHELLE; ORIE_PEAU reorients skin cells so that their normal points out of
 //! the cell they bound, as Code_Aster's `orilma` / `oriema` do.
 //!
 //! For each skin cell (SEG2/SEG3 bounding plane cells, TRIA3/6 and
@@ -10,8 +10,9 @@
 //! bounds no cell is left as it is and reported. The test is Code_Aster's:
 //! the normal from the first nodes against the vector between the vertex
 //! centroids; a cell found inward has its nodes permuted by
-//! [`geometry::flip_permutation`]. Like Code_Aster, the mesh of MAILLAGE is
-//! modified in place, reuse or not.
+//! [`geometry::flip_permutation`]. TRANSLATION and ECHELLE move the nodes
+//! (the translation first, then the scaling about the origin). Like
+//! Code_Aster, the mesh of MAILLAGE is modified in place, reuse or not.
 
 use crate::catalog::args::Args;
 use crate::concepts::ConceptData;
@@ -30,8 +31,6 @@ const NOT_YET: &[&str] = &[
     "ORIE_LIGNE",
     "MODI_MAILLE",
     "MODI_BASE",
-    "ECHELLE",
-    "TRANSLATION",
     "ROTATION",
     "SYMETRIE",
     "ABSC_CURV",
@@ -196,8 +195,32 @@ pub fn modi_maillage(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             }
         }
     }
+    // The moves of the nodes, in Code_Aster's order: the translation, then the scaling about the origin.
+    let tran = a.reals("TRANSLATION");
+    if !tran.is_empty() {
+        any = true;
+        if tran.len() != mesh.dim && !(tran.len() == 3 && mesh.dim == 2) {
+            return Err(a.err("TRANSLATION", format!("{} components for a mesh of dimension {}", tran.len(), mesh.dim)));
+        }
+        for x in mesh.coords.iter_mut() {
+            for (k, t) in tran.iter().enumerate() {
+                x[k] += t;
+            }
+        }
+        text.push_str(&format!("  TRANSLATION {tran:?}: {} nodes moved\n", mesh.coords.len()));
+    }
+    if let Some(e) = a.real("ECHELLE") {
+        any = true;
+        if !(e.is_finite() && e != 0.0) {
+            return Err(a.err("ECHELLE", format!("the scale factor must be a non-zero number (got {e})")));
+        }
+        for x in mesh.coords.iter_mut() {
+            x.iter_mut().for_each(|v| *v *= e);
+        }
+        text.push_str(&format!("  ECHELLE {e}: {} nodes scaled\n", mesh.coords.len()));
+    }
     if !any {
-        return Err(a.err("MAILLAGE", "no modification asked (ORIE_PEAU is the one supported)"));
+        return Err(a.err("MAILLAGE", "no modification asked (ORIE_PEAU, TRANSLATION and ECHELLE are supported)"));
     }
     ctx.io.mess(&text);
     let rc = Rc::new(mesh);

@@ -270,8 +270,8 @@ fn located_errors() {
     let cases = [
         ("MA = MODI_MAILLAGE(reuse=MA, MAILLAGE=MA, ORIE_PEAU=_F(GROUP_MA_PEAU='MID'))\n", "GROUP_MA_INTERNE", ":3:"),
         (
-            "MA = MODI_MAILLAGE(reuse=MA, MAILLAGE=MA, TRANSLATION=(1.0, 0.0))\n",
-            "TRANSLATION: not supported yet",
+            "MA = MODI_MAILLAGE(reuse=MA, MAILLAGE=MA, ROTATION=_F(POIN_1=(0.0, 0.0), ANGLE=10.0))\n",
+            "ROTATION: not supported yet",
             ":3:",
         ),
         (
