@@ -36,6 +36,8 @@ pub enum Modelling {
     DPlanHms,
     DPlanHmSi,
     AxisHms,
+    /// PHENOMENE='THERMIQUE': PLAN, AXIS, 3D and their _DIAG variants.
+    Thermal(crate::thermal::Modelisation),
 }
 
 impl Modelling {
@@ -66,8 +68,29 @@ impl Modelling {
         Self::ALL.iter().find(|(_, n)| *n == s).map(|(m, _)| *m)
     }
 
+    /// From a phenomenon and Code_Aster's name under it.
+    pub fn of_phenomenon(phenomenon: &str, s: &str) -> Option<Modelling> {
+        match phenomenon {
+            "MECANIQUE" => Self::from_name(s),
+            "THERMIQUE" => crate::thermal::Modelisation::from_name(s).map(Modelling::Thermal),
+            _ => None,
+        }
+    }
+
+    /// The thermal modelisation, if it is one.
+    pub fn thermal(self) -> Option<crate::thermal::Modelisation> {
+        if let Modelling::Thermal(m) = self {
+            Some(m)
+        } else {
+            None
+        }
+    }
+
     /// Code_Aster's name.
     pub fn name(self) -> &'static str {
+        if let Modelling::Thermal(m) = self {
+            return m.name();
+        }
         Self::ALL.iter().find(|(m, _)| *m == self).map(|(_, n)| *n).unwrap_or("?")
     }
 
@@ -76,6 +99,7 @@ impl Modelling {
         use Modelling::*;
         match self {
             ThreeD | ThreeDHm | ThreeDHmd | ThreeDSi | ThreeDDil | ThreeDHms | ThreeDHmSi => 3,
+            Thermal(m) => m.dim(),
             _ => 2,
         }
     }
@@ -103,6 +127,9 @@ impl Modelling {
     /// only (volume cells and their skins), the others on every cell of the right dimension.
     pub fn accepts(self, t: crate::mesh::CellType) -> bool {
         use crate::mesh::CellType::*;
+        if let Modelling::Thermal(m) = self {
+            return m.accepts_volume(t) || m.accepts_skin(t);
+        }
         !self.is_hm() || matches!(t, Seg3 | Tria6 | Quad8 | Tetra10 | Pyram13 | Penta15 | Hexa20)
     }
 
@@ -184,6 +211,10 @@ impl Model {
         v.dedup();
         v
     }
+    /// A model of PHENOMENE='THERMIQUE'.
+    pub fn is_thermal(&self) -> bool {
+        self.elements.iter().flatten().any(|e| e.modelisation.thermal().is_some())
+    }
 }
 
 /// A material parameter: a real, a function of a variable, or a text.
@@ -246,6 +277,8 @@ pub enum LoadItem {
     FluxThm { cells: Vec<usize>, value: LoadValue },
     /// LIAISON_DDL: Σ coef·u(node, component) = value.
     Relation { terms: Vec<(usize, String, f64)>, value: LoadValue },
+    /// AFFE_CHAR_THER(_F): a heat flux, exchange or source.
+    Heat(HeatItem),
 }
 
 /// AFFE_CHAR_MECA(_F): the load items on a model.
@@ -275,4 +308,43 @@ pub struct Contact {
     pub model: ConceptRef,
     pub zones: Vec<ContactZone>,
     pub iter_cont_maxi: i64,
+}
+
+// ------------------------------------------------------------------ AFFE_CHAR_THER(_F)
+
+/// A heat load on cells (a boundary flux density is positive when heat enters the body).
+#[derive(Debug, Clone)]
+pub enum HeatItem {
+    /// FLUX_REP FLUN: a normal heat flux entering through skin cells.
+    NormalFlux { cells: Vec<usize>, value: LoadValue },
+    /// FLUX_REP FLUX_X FLUX_Y FLUX_Z: a flux vector φ, whose density on skin cells is φ · n.
+    FluxVector { cells: Vec<usize>, components: [Option<LoadValue>; 3] },
+    /// ECHANGE: h (T_ext − T) through skin cells.
+    Exchange { cells: Vec<usize>, coef_h: LoadValue, temp_ext: LoadValue },
+    /// SOURCE SOUR: a volume source on bulk cells.
+    Source { cells: Vec<usize>, value: LoadValue },
+    /// RAYONNEMENT: σ ε ((T_ext + 273.15)⁴ − (T + 273.15)⁴) through skin cells.
+    Radiation { cells: Vec<usize>, sigma: LoadValue, epsilon: LoadValue, temp_ext: LoadValue },
+    /// FLUX_NL FLUN: a flux entering through skin cells, a function of the temperature.
+    NonlinearFlux { cells: Vec<usize>, flux: ConceptRef },
+    /// SOUR_NL SOUR: a volume source, a function of the temperature (and of space and time).
+    NonlinearSource { cells: Vec<usize>, source: ConceptRef },
+    /// ECHANGE_PAROI: h (T₂ − T₁) between paired skin cells; each pair is a cell of GROUP_MA_1 and the
+    /// nodes of GROUP_MA_2 facing its nodes, in its node order.
+    WallExchange { pairs: Vec<(usize, Vec<usize>)>, coef_h: LoadValue },
+}
+
+impl HeatItem {
+    /// The keyword of AFFE_CHAR_THER(_F) that makes it, for messages.
+    pub fn keyword(&self) -> &'static str {
+        match self {
+            HeatItem::NormalFlux { .. } | HeatItem::FluxVector { .. } => "FLUX_REP",
+            HeatItem::Exchange { .. } => "ECHANGE",
+            HeatItem::Source { .. } => "SOURCE",
+            HeatItem::Radiation { .. } => "RAYONNEMENT",
+            HeatItem::NonlinearFlux { .. } => "FLUX_NL",
+            HeatItem::NonlinearSource { .. } => "SOUR_NL",
+            HeatItem::WallExchange { .. } => "ECHANGE_PAROI",
+        }
+    }
 }

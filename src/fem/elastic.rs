@@ -198,6 +198,20 @@ impl Physics for Elastic {
                             md.name()
                         )))
                     }
+                    heat @ (Force::HeatFlux { .. }
+                    | Force::HeatFluxVector { .. }
+                    | Force::HeatSource { .. }
+                    | Force::Exchange { .. }
+                    | Force::Radiation { .. }
+                    | Force::HeatFluxOfTemperature { .. }
+                    | Force::HeatSourceOfTemperature { .. }
+                    | Force::WallExchange { .. }) => {
+                        return Err(excit(format!(
+                            "load {name}: {} is a thermal load; {} is a mechanical model",
+                            heat.keyword(),
+                            md.name()
+                        )))
+                    }
                     Force::Gravity { g, direction, cells } => {
                         let on: Vec<usize> = match cells {
                             Some(c) => c.iter().copied().filter(|c| self.materials[*c].is_some()).collect(),

@@ -18,6 +18,10 @@ use crate::diag::Error;
 /// A function of the position.
 type OfPosition<'a> = Box<dyn Fn(&[f64; 3]) -> crate::diag::Result<f64> + 'a>;
 
+/// A function of the position and the temperature, with its derivative in the temperature (FLUX_NL,
+/// SOUR_NL): `(value, ∂value/∂T)`.
+pub type OfTemperature<'a> = Box<dyn Fn(&[f64; 3], f64) -> crate::diag::Result<(f64, f64)> + 'a>;
+
 /// A value of a load at the instant (its multiplier applied), as a function of the position.
 pub struct Value<'a> {
     /// The value where it does not depend on the position (a real).
@@ -77,6 +81,23 @@ pub enum Force<'a> {
     Gravity { g: f64, direction: [f64; 3], cells: Option<&'a [usize]> },
     /// A fluid mass flux entering through skin cells (FLUX_THM_REP FLUN_HYDR1).
     Flux { cells: &'a [usize], value: Value<'a> },
+    /// A heat flux density entering through skin cells (FLUX_REP FLUN).
+    HeatFlux { cells: &'a [usize], value: Value<'a> },
+    /// A heat flux vector φ on skin cells, whose density there is φ · n (FLUX_REP FLUX_X FLUX_Y FLUX_Z).
+    HeatFluxVector { cells: &'a [usize], components: [Option<Value<'a>>; 3] },
+    /// A heat source per unit volume on bulk cells (SOURCE SOUR).
+    HeatSource { cells: &'a [usize], value: Value<'a> },
+    /// An exchange `h (T_ext − T)` through skin cells (ECHANGE): the multiplier scales `T_ext` only.
+    Exchange { cells: &'a [usize], coef_h: Value<'a>, temp_ext: Value<'a> },
+    /// Radiation `σ ε ((T_ext + 273.15)⁴ − (T + 273.15)⁴)` through skin cells (RAYONNEMENT).
+    Radiation { cells: &'a [usize], sigma: Value<'a>, epsilon: Value<'a>, temp_ext: Value<'a> },
+    /// A heat flux density entering through skin cells, a function of the temperature (FLUX_NL).
+    HeatFluxOfTemperature { cells: &'a [usize], flux: OfTemperature<'a> },
+    /// A heat source, a function of the temperature (SOUR_NL).
+    HeatSourceOfTemperature { cells: &'a [usize], source: OfTemperature<'a> },
+    /// An exchange `h (T₂ − T₁)` between paired walls (ECHANGE_PAROI): each pair a skin cell and the nodes
+    /// facing its nodes, in its node order.
+    WallExchange { pairs: &'a [(usize, Vec<usize>)], coef_h: Value<'a> },
 }
 
 impl Force<'_> {
@@ -89,6 +110,13 @@ impl Force<'_> {
             Force::LipPressure { .. } => "PRES_REP (FISSURE)",
             Force::Gravity { .. } => "PESANTEUR",
             Force::Flux { .. } => "FLUX_THM_REP",
+            Force::HeatFlux { .. } | Force::HeatFluxVector { .. } => "FLUX_REP",
+            Force::HeatSource { .. } => "SOURCE",
+            Force::Exchange { .. } => "ECHANGE",
+            Force::Radiation { .. } => "RAYONNEMENT",
+            Force::HeatFluxOfTemperature { .. } => "FLUX_NL",
+            Force::HeatSourceOfTemperature { .. } => "SOUR_NL",
+            Force::WallExchange { .. } => "ECHANGE_PAROI",
         }
     }
 }
@@ -232,8 +260,30 @@ pub trait Physics {
     fn position(&self, node: usize) -> [f64; 3];
     fn node_name(&self, node: usize) -> String;
 
-    /// The external forces of the loads over the step, added to `f`.
+    /// The external forces of the loads over the step, added to `f` (`loads` at its end).
     fn forces(&self, loads: &[Load], step: &StepInfo, f: &mut [f64]) -> Result<(), Error>;
+
+    /// What the loads at the step's start bring to its external forces, from the start state `x0`
+    /// (`loads` at `step.t0`; a θ-scheme's `(1 − θ)` part). None by default.
+    fn start_forces(&self, _loads: &[Load], _step: &StepInfo, _x0: &[f64], _f: &mut [f64]) -> Result<(), Error> {
+        Ok(())
+    }
+
+    /// The loads whose forces depend on the state (an exchange `h (T_ext − T)`, radiation): at the state
+    /// `x` (`loads` at the step's end), subtracted from `fint` (they are internal forces of the
+    /// equations), their tangent added to `tangent` when asked, recorded in the trial `state` as the
+    /// physics needs. None by default.
+    fn state_loads(
+        &self,
+        _loads: &[Load],
+        _step: &StepInfo,
+        _x: &[f64],
+        _state: &mut Self::State,
+        _tangent: Option<&mut Assembler>,
+        _fint: &mut [f64],
+    ) -> Result<(), Failure> {
+        Ok(())
+    }
 
     /// The fields of a state.
     fn fields(&self, x: &[f64], state: &Self::State) -> Result<Vec<(String, Field)>, Error>;
@@ -257,6 +307,11 @@ pub trait Physics {
             scale = scale.max(if r.free[d] { r.fext[d].abs() } else { r.fint[d].abs() });
         }
         scale
+    }
+
+    /// The reference force at a state with its laws' trial state (by default [`Physics::reference`]).
+    fn reference_at(&self, r: &Residual, _trial: &Self::State) -> f64 {
+        self.reference(r)
     }
 
     /// The factorization to use for a reduced tangent of `n` unknowns, when the physics has a preference

@@ -357,6 +357,12 @@ impl Physics for HmProblem {
                             }
                         }
                     }
+                    heat => {
+                        return Err(excit(format!(
+                            "load {name}: {} is a thermal load, not one of a hydro-mechanical model",
+                            heat.keyword()
+                        )))
+                    }
                 }
             }
         }

@@ -1,4 +1,5 @@
-//! AFFE_CHAR_MECA and AFFE_CHAR_MECA_F: mechanical loads on a model, mesh entities resolved and checked;
+//! AFFE_CHAR_MECA and AFFE_CHAR_MECA_F: mechanical loads on a model, mesh entities resolved and checked
+//! (AFFE_CHAR_THER(_F), the thermal ones, in `thermal`); AFFE_CHAR_CINE(_F): prescribed unknowns;
 //! DEFI_CONTACT: the cohesive zones of an X-FEM model.
 
 use crate::catalog::args::{Args, Val};
@@ -13,6 +14,9 @@ use std::collections::HashMap;
 use std::rc::Rc;
 
 use crate::fem::geometry;
+
+pub mod thermal;
+
 // ------------------------------------------------------------------ AFFE_CHAR_MECA(_F)
 
 /// Load keywords we implement; any other factor keyword given is refused.
@@ -269,6 +273,46 @@ fn face_impo(mesh: &Mesh, occ: &Args, name: &str, dim: usize, functional: bool) 
         }
     }
     Ok(items)
+}
+
+// ------------------------------------------------------------------ AFFE_CHAR_CINE(_F)
+
+pub fn affe_char_cine(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    char_cine(a, false)
+}
+
+pub fn affe_char_cine_f(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    char_cine(a, true)
+}
+
+/// Kinematic loads: the values of MECA_IMPO / THER_IMPO prescribed on the nodes they select. Code_Aster
+/// eliminates them from the system where AFFE_CHAR_MECA's DDL_IMPO adds multipliers; the solution is the
+/// same, and we eliminate both.
+fn char_cine(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
+    a.refuse(&["ACOU_IMPO", "EVOL_IMPO"])?;
+    let _ = a.int("INFO");
+    let mo = a.req_concept("MODELE")?;
+    let (mesh, name, thermal) = {
+        let m = mo.model()?;
+        (m.current_mesh(), m.mesh_concept.label(), m.is_thermal())
+    };
+    let mut items = Vec::new();
+    for (kw, wants_thermal) in [("MECA_IMPO", false), ("THER_IMPO", true)] {
+        for occ in a.facts(kw) {
+            if thermal != wants_thermal {
+                let what = if thermal { "a thermal model" } else { "a mechanical model" };
+                return Err(a.err(kw, format!("{} is {what}", mo.label())));
+            }
+            occ.refuse(&["TEMP_INF", "TEMP_SUP", "TEMP_MIL"])?;
+            let comps = components(occ, &[]);
+            for node in select_nodes(&mesh, occ, &name)? {
+                for (c, v) in &comps {
+                    items.push(LoadItem::Dof { node, component: c.clone(), value: v.clone() });
+                }
+            }
+        }
+    }
+    Ok(Some(ConceptData::Load(Load { model: mo, items, functional })))
 }
 
 pub fn affe_char_meca(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {

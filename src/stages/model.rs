@@ -35,11 +35,14 @@ pub fn affe_modele(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let mut alarms = String::new();
     for occ in a.facts("AFFE") {
         let phen = occ.req_text("PHENOMENE")?;
-        if phen != "MECANIQUE" {
+        if !matches!(phen, "MECANIQUE" | "THERMIQUE") {
             return Err(occ.err("PHENOMENE", format!("PHENOMENE='{phen}' is not supported yet")));
         }
+        if let Some(other) = elements.iter().flatten().map(|e| e.phenomenon.as_str()).find(|p| *p != phen) {
+            return Err(occ.err("PHENOMENE", format!("a model holds one phenomenon: {other} and {phen} are given")));
+        }
         let name_md = occ.req_text("MODELISATION")?;
-        let Some(modelisation) = Modelling::from_name(name_md) else {
+        let Some(modelisation) = Modelling::of_phenomenon(phen, name_md) else {
             return Err(occ.err("MODELISATION", format!("MODELISATION='{name_md}' is not supported yet")));
         };
         let dim = modelisation.dim();

@@ -10,6 +10,8 @@
 //! - [`boundary`]: the skin elements' loads — a heat flux density given as a function of the point, its
 //!   normal and the temperature there (normal flux, flux vector, exchange, radiation, nonlinear flux) with
 //!   its tangent — and the exchange between two walls (`ECHANGE_PAROI`).
+//! - [`physics`]: heat conduction as the solving core's `Physics`: the temperatures, the θ-scheme, the
+//!   loads' heat (constant, or depending on the temperature), the fields of a state.
 //! - [`curve`]: tabulated functions of the temperature as `THER_NL` reads them (linear interpolation,
 //!   Code_Aster's prolongations) and the enthalpy integrated from a tabulated `ρCp`.
 //!
@@ -17,12 +19,13 @@
 //! matrices are row-major `n × n`; `AXIS` integrates per radian (weights × r, x = r ≥ 0); the flux is
 //! `q = −Λ ∇T` (`FLUX FLUY [FLUZ]`); a boundary flux density is positive when heat enters the body.
 //! Material values that depend on time or temperature reach the library as numbers, closures or
-//! [`curve::Curve`]s. The library knows cells, shape functions and numbers: nothing of commands,
-//! concepts or files.
+//! [`curve::Curve`]s. The library knows cells, shape functions and numbers, and the solving core's seam
+//! (`fem::physics`): nothing of commands, concepts or files.
 
 pub mod boundary;
 pub mod curve;
 pub mod element;
+pub mod physics;
 
 #[cfg(test)]
 mod analytic_tests;

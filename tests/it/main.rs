@@ -5,6 +5,7 @@
 mod common;
 
 mod fem;
+mod heat;
 mod hm;
 mod language;
 mod legacy;

@@ -8,8 +8,8 @@ use crate::kws;
 
 /// A function of one or more variables: tabulated, nappe or formula.
 pub const FUNCS: &[ConceptKind] = &[ConceptKind::Fonction, ConceptKind::Nappe, ConceptKind::Formule];
-/// Results of mechanical computations.
-pub const RESULTS: &[ConceptKind] = &[ConceptKind::EvolElas, ConceptKind::EvolNoli];
+/// Results of mechanical and thermal computations.
+pub const RESULTS: &[ConceptKind] = &[ConceptKind::EvolElas, ConceptKind::EvolNoli, ConceptKind::EvolTher];
 pub const OUI_NON: &[&str] = &["OUI", "NON"];
 
 /// `CRITERE` (default RELATIF) and the `PRECISION` that goes with it, used to

@@ -164,6 +164,7 @@ const NOM_VARI_VAEX: &[&str] = &[
 ];
 
 const CALC_OPTIONS: &[&str] = &[
+    "THERMIQUE",
     "CONTRAINTE",
     "DEFORMATION",
     "ENERGIE",
@@ -208,6 +209,21 @@ fn calc_champ() -> Command {
                 ),
                 simp("PROPRIETES").txt().many().one_of(&["MATE_ELGA", "MATE_ELEM"]),
                 simp("HYDRAULIQUE").txt().many().one_of(&["FLHN_ELGA"]),
+                simp("THERMIQUE").txt().many().one_of(&[
+                    "TEMP_ELGA",
+                    "FLUX_ELGA",
+                    "FLUX_ELNO",
+                    "FLUX_NOEU",
+                    "GRAT_ELGA",
+                    "GRAT_ELNO",
+                    "GRAT_NOEU",
+                    "HYDR_ELGA",
+                    "HYDR_ELNO",
+                    "HYDR_NOEU",
+                    "SOUR_ELGA",
+                    "ETHE_ELEM",
+                    "HHO_TEMP",
+                ]),
                 simp("FORCE").txt().many().one_of(&["FORC_NODA", "REAC_NODA"]),
                 fact(
                     "EXCIT",

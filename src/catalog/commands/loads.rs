@@ -1,12 +1,23 @@
-//! Mechanical loads and boundary conditions (AFFE_CHAR_MECA, AFFE_CHAR_MECA_F)
-//! and contact definitions (DEFI_CONTACT).
+//! Mechanical loads and boundary conditions (AFFE_CHAR_MECA, AFFE_CHAR_MECA_F), thermal ones
+//! (AFFE_CHAR_THER(_F), in `thermal`) and contact definitions (DEFI_CONTACT).
 
+use crate::catalog::args::Args;
 use crate::catalog::schema::*;
 use crate::concepts::ConceptKind;
 use crate::kws;
 
+mod thermal;
+
 pub fn commands() -> Vec<Command> {
-    vec![affe_char_meca(), affe_char_meca_f(), defi_contact()]
+    vec![
+        affe_char_meca(),
+        affe_char_meca_f(),
+        affe_char_cine(V::Real),
+        affe_char_cine(V::Func),
+        defi_contact(),
+        thermal::affe_char_ther(),
+        thermal::affe_char_ther_f(),
+    ]
 }
 
 /// A function of one or more parameters.
@@ -1045,4 +1056,50 @@ fn defi_contact() -> Command {
             bloc(and(vec![xfem(), coulomb()]), kws![zone_xfem(true)]),
             bloc(and(vec![xfem(), sans()]), kws![zone_xfem(false)]),
         ])
+}
+
+/// The kind of kinematic load AFFE_CHAR_CINE(_F) makes: mechanical (MECA_IMPO, EVOL_IMPO of a mechanical
+/// result) or thermal (THER_IMPO, EVOL_IMPO of an EVOL_THER).
+fn char_cine_kind(a: &Args) -> crate::diag::Result<ConceptKind> {
+    let thermal = a.has("THER_IMPO") || a.concept("EVOL_IMPO").is_some_and(|c| c.kind() == ConceptKind::EvolTher);
+    Ok(if thermal { ConceptKind::CharCineTher } else { ConceptKind::CharCineMeca })
+}
+
+/// AFFE_CHAR_CINE and AFFE_CHAR_CINE_F: prescribed values of unknowns, eliminated from the system.
+fn affe_char_cine(v: V) -> Command {
+    let sel = || kws![tout(), names("GROUP_MA"), names("MAILLE"), names("GROUP_NO"), names("NOEUD")];
+    let at_least = || au_moins_un(&["TOUT", "GROUP_MA", "MAILLE", "GROUP_NO", "NOEUD"]);
+    let comps = if v == V::Real { DDL_IMPO_R } else { DDL_IMPO_F };
+    let mut meca = sel();
+    meca.extend(vals(comps, v));
+    let mut ther = sel();
+    ther.extend(vals(&["TEMP", "TEMP_INF", "TEMP_SUP", "TEMP_MIL"], v));
+    let mut acou = sel();
+    acou.extend(vals(&["PRES"], v));
+
+    let mut entries = kws![
+        simp("MODELE").co(&[ConceptKind::Modele]).o(),
+        fact("MECA_IMPO", meca).many().rules(vec![at_least(), au_moins_un(comps)]),
+        fact("THER_IMPO", ther)
+            .many()
+            .rules(vec![at_least(), au_moins_un(&["TEMP", "TEMP_INF", "TEMP_SUP", "TEMP_MIL"])]),
+        fact("ACOU_IMPO", acou).many().rules(vec![at_least()]),
+        simp("INFO").i().d(1).one_of_i(&[1, 2]),
+    ];
+    let mut rules = vec![un_parmi(&["MECA_IMPO", "THER_IMPO", "ACOU_IMPO", "EVOL_IMPO"])];
+    if v == V::Real {
+        entries.extend(kws![
+            simp("EVOL_IMPO").co(&[ConceptKind::EvolElas, ConceptKind::EvolNoli, ConceptKind::EvolTher]),
+            bloc(present("EVOL_IMPO"), kws![simp("NOM_CMP").txt().many()]),
+        ]);
+    } else {
+        rules = vec![un_parmi(&["MECA_IMPO", "THER_IMPO", "ACOU_IMPO"])];
+    }
+    let command = match v {
+        V::Real => {
+            Command::new("AFFE_CHAR_CINE", "Prescribe unknowns by elimination (kinematic loads), constant values.")
+        }
+        V::Func => Command::new("AFFE_CHAR_CINE_F", "Prescribe unknowns by elimination (kinematic loads), functions."),
+    };
+    command.produces_dyn(char_cine_kind).kw(entries).rules(rules)
 }

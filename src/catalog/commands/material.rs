@@ -321,6 +321,8 @@ fn thermal() -> Vec<Entry> {
         fact("THER_FO", kws![f("LAMBDA").o(), f("RHO_CP")]),
         fact("THER_NL", kws![f("LAMBDA").o(), f("BETA"), f("RHO_CP")]).rules(vec![un_parmi(&["BETA", "RHO_CP"])]),
         fact("THER_ORTH", kws![r("LAMBDA_L").o(), r("LAMBDA_T").o(), r("LAMBDA_N"), r("RHO_CP")]),
+        fact("THER_NL_ORTH", kws![f("LAMBDA_L").o(), f("LAMBDA_T").o(), f("LAMBDA_N"), f("BETA"), f("RHO_CP")])
+            .rules(vec![un_parmi(&["BETA", "RHO_CP"])]),
     ]
 }
 
@@ -579,6 +581,7 @@ const BEHAVIOURS: &[&str] = &[
     "THER_FO",
     "THER_NL",
     "THER_ORTH",
+    "THER_NL_ORTH",
     "COMP_THM",
 ];
 
@@ -609,7 +612,7 @@ fn defi_materiau() -> Command {
         .kw(entries)
         .rules(vec![
             exclus(&["ELAS", "ELAS_FO", "ELAS_ISTR", "ELAS_ISTR_FO", "ELAS_ORTH", "ELAS_ORTH_FO", "ELAS_HYPER"]),
-            exclus(&["THER", "THER_FO", "THER_ORTH", "THER_NL"]),
+            exclus(&["THER", "THER_FO", "THER_ORTH", "THER_NL", "THER_NL_ORTH"]),
             exclus(&["ECRO_LINE", "ECRO_LINE_FO", "ECRO_PUIS"]),
             exclus(&["NORTON", "NORTON_FO"]),
             exclus(&["LEMAITRE", "LEMAITRE_FO"]),

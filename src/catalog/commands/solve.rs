@@ -1,4 +1,5 @@
-//! Solvers: MECA_STATIQUE, STAT_NON_LINE and the time-step list DEFI_LIST_INST.
+//! Solvers: MECA_STATIQUE, STAT_NON_LINE, the time-step list DEFI_LIST_INST, and heat (THER_LINEAIRE,
+//! THER_NON_LINE, in `thermal`).
 
 use super::common::*;
 use crate::catalog::schema::*;
@@ -562,7 +563,7 @@ fn stat_non_line() -> Command {
         fact(
             "EXCIT",
             kws![
-                simp("CHARGE").co(&[ConceptKind::CharMeca]).o(),
+                simp("CHARGE").co(&[ConceptKind::CharMeca, ConceptKind::CharCineMeca]).o(),
                 simp("FONC_MULT").co(FUNCS),
                 simp("TYPE_CHARGE").txt().d("FIXE_CSTE").one_of(&[
                     "FIXE_CSTE",
@@ -716,7 +717,7 @@ fn meca_statique() -> Command {
             fact(
                 "EXCIT",
                 kws![
-                    simp("CHARGE").co(&[ConceptKind::CharMeca]).o(),
+                    simp("CHARGE").co(&[ConceptKind::CharMeca, ConceptKind::CharCineMeca]).o(),
                     simp("FONC_MULT").co(FUNCS),
                     simp("TYPE_CHARGE").txt().d("FIXE_CSTE").one_of(&["FIXE_CSTE"]),
                 ]
@@ -874,6 +875,8 @@ fn defi_list_inst() -> Command {
         ])
 }
 
+mod thermal;
+
 pub fn commands() -> Vec<Command> {
-    vec![meca_statique(), stat_non_line(), defi_list_inst()]
+    vec![meca_statique(), stat_non_line(), defi_list_inst(), thermal::ther_lineaire(), thermal::ther_non_line()]
 }

@@ -8,7 +8,7 @@
 //! the reactions of the eliminated ones). Eliminated equations carry their reaction.
 
 use super::loads::Loads;
-use super::newton::inf_norm;
+use super::newton::{inf_norm, LineSearch};
 use super::settings::Settings;
 use crate::concepts::result::Step;
 use crate::diag::{Error, Result};
@@ -50,6 +50,9 @@ pub struct Driver<'a, P: Physics> {
     pub opts: SolverOptions,
     /// The symbolic analysis of the last factorization, reused while the pattern holds.
     analysis: RefCell<Option<Analysis>>,
+    /// A linear physics' last reduced matrix and its factorization, reused while the matrix does not
+    /// change (the steps of a transient computation at a constant Δt).
+    kept: RefCell<Option<(faer::sparse::SparseColMat<usize, f64>, solve::Factorization)>>,
     /// The largest reference force of the converged steps (the relative criterion's fallback when the
     /// reactions vanish, for a physics that asks for it).
     ref_hist: Cell<f64>,
@@ -72,7 +75,15 @@ struct Assembled<S> {
 
 impl<'a, P: Physics> Driver<'a, P> {
     pub fn new(cfg: &'a Settings, phys: &'a P, opts: SolverOptions) -> Self {
-        Driver { cfg, phys, loads: Loads::new(cfg), opts, analysis: RefCell::new(None), ref_hist: Cell::new(0.0) }
+        Driver {
+            cfg,
+            phys,
+            loads: Loads::new(cfg),
+            opts,
+            analysis: RefCell::new(None),
+            kept: RefCell::new(None),
+            ref_hist: Cell::new(0.0),
+        }
     }
 
     /// Every instant of the settings from the state `(x, state)` of the first one: the steps stored at the
@@ -105,13 +116,13 @@ impl<'a, P: Physics> Driver<'a, P> {
     pub fn remember_reference(&self, t: f64, x: &[f64], state: &P::State) -> Result<()> {
         let step = StepInfo { t0: t, t1: t };
         let cons = self.loads.conditions(self.phys, t)?;
-        let fext = self.loads.forces(self.phys, &step)?;
+        let fext = self.loads.forces(self.phys, &step, x)?;
         let map = DofMap::build(x.len(), &zero(&cons)).map_err(|e| self.cfg.err("EXCIT", e.to_string()))?;
         let mut fint = vec![0.0; x.len()];
-        self.phys.assemble(&step, x, state, None, &mut fint).map_err(fatal)?;
+        let trial = self.internal(&step, x, state, None, &mut fint).map_err(fatal)?;
         let free = free_of(&map, x.len());
         let r = Residual { fext: &fext, fint: &fint, free: &free, x0: x, x };
-        self.ref_hist.set(self.phys.reference(&r));
+        self.ref_hist.set(self.phys.reference_at(&r, &trial));
         Ok(())
     }
 
@@ -170,13 +181,53 @@ impl<'a, P: Physics> Driver<'a, P> {
         let started = std::time::Instant::now();
         let mut asm = Assembler::new(map, fr.pattern.clone());
         let mut fint = vec![0.0; x.len()];
-        let state = self.phys.assemble(&fr.step, x, prev, Some(&mut asm), &mut fint).map_err(|f| self.place(f))?;
+        let state = self.internal(&fr.step, x, prev, Some(&mut asm), &mut fint)?;
         let r: Vec<f64> = fr.fext.iter().zip(&fint).map(|(f, g)| f - g).collect();
         let all: Vec<usize> = (0..x.len()).collect();
         asm.add_vector(&all, &r);
         let (k, rhs) = asm.finish();
         log.assembly += started.elapsed().as_secs_f64();
         Ok(Assembled { k, rhs, fint, state })
+    }
+
+    /// The internal forces at the state `x` (the loads that depend on it among them), the tangent added
+    /// to `tangent` when asked; the laws' trial state.
+    fn internal(
+        &self,
+        step: &StepInfo,
+        x: &[f64],
+        prev: &P::State,
+        mut tangent: Option<&mut Assembler>,
+        fint: &mut [f64],
+    ) -> std::result::Result<P::State, Failure> {
+        let mut state = self.phys.assemble(step, x, prev, tangent.as_deref_mut(), fint).map_err(|f| self.place(f))?;
+        self.loads
+            .with(step.t1, |loads| Ok(self.phys.state_loads(loads, step, x, &mut state, tangent, fint)))?
+            .map_err(|f| self.place(f))?;
+        Ok(state)
+    }
+
+    /// RECH_LINEAIRE along the correction `full` (`dx` reduced) from the state `x`: the step ρ where the
+    /// residual is orthogonal to the correction, by secants.
+    #[allow(clippy::too_many_arguments)]
+    fn line_search(
+        &self,
+        ls: &LineSearch,
+        fr: &Frame,
+        map: &DofMap,
+        x: &[f64],
+        full: &[f64],
+        dx: &[f64],
+        prev: &P::State,
+    ) -> std::result::Result<f64, Failure> {
+        let mut f = |rho: f64| -> std::result::Result<f64, Failure> {
+            let trial: Vec<f64> = x.iter().zip(full).map(|(a, b)| a + rho * b).collect();
+            let mut fint = vec![0.0; x.len()];
+            self.internal(&fr.step, &trial, prev, None, &mut fint)?;
+            let g: Vec<f64> = fint.iter().zip(&fr.fext).map(|(a, b)| a - b).collect();
+            Ok(map.reduce_vector(&g).iter().zip(dx).map(|(a, b)| a * b).sum())
+        };
+        Ok(ls.run(&mut f)?.0)
     }
 
     fn place(&self, f: Failure) -> Failure {
@@ -188,6 +239,7 @@ impl<'a, P: Physics> Driver<'a, P> {
 
     /// The relative and absolute residuals of a state (Code_Aster's RESI_GLOB_RELA and RESI_GLOB_MAXI),
     /// and whether the reactions vanished against the earlier steps.
+    #[allow(clippy::too_many_arguments)]
     fn residual(
         &self,
         map: &DofMap,
@@ -196,10 +248,11 @@ impl<'a, P: Physics> Driver<'a, P> {
         x0: &[f64],
         x: &[f64],
         fint: &[f64],
+        trial: &P::State,
     ) -> (f64, f64, f64, bool) {
         let r: Vec<f64> = fr.fext.iter().zip(fint).map(|(f, g)| f - g).collect();
         let abs = inf_norm(&map.reduce_vector(&r));
-        let scale = self.phys.reference(&Residual { fext: &fr.fext, fint, free, x0, x });
+        let scale = self.phys.reference_at(&Residual { fext: &fr.fext, fint, free, x0, x }, trial);
         let hist = self.ref_hist.get();
         let vanished = self.phys.reference_memory() && scale <= 1e-6 * hist;
         let s = if vanished { hist } else { scale };
@@ -267,7 +320,14 @@ impl<'a, P: Physics> Driver<'a, P> {
         if let Some(m) = phys.solver_method(k.nrows()) {
             opts.method = m;
         }
-        let sol = solve::solve_with(k.as_ref(), &rhs, &opts, &mut self.analysis.borrow_mut()).map_err(|e| {
+        // A linear physics over several steps keeps its matrix and factors for the next step; a single
+        // solve (MECA_STATIQUE) keeps nothing beside its factors.
+        let (sol, fresh) = if phys.linear() && self.cfg.times.len() > 2 {
+            self.solve_kept(k, &rhs, &opts)
+        } else {
+            solve::solve_with(k.as_ref(), &rhs, &opts, &mut self.analysis.borrow_mut()).map(|s| (s, true))
+        }
+        .map_err(|e| {
             let singular = matches!(e, solve::SolveError::Singular { .. });
             let msg = super::solver::solve_error(e, &self.opts, &|d| phys.label(map.free_to_full[d]));
             if phys.linear() && singular {
@@ -285,7 +345,9 @@ impl<'a, P: Physics> Driver<'a, P> {
         if log.factorizations == 0 {
             log.condition = sol.info.condition;
         }
-        log.factorizations += 1;
+        if fresh {
+            log.factorizations += 1;
+        }
         let info = solve::FactorInfo { condition: log.condition, ..sol.info };
         log.last_solve = Some((info, sol.residual, sol.refinements));
         if sol.x.iter().any(|v| !v.is_finite()) {
@@ -294,6 +356,53 @@ impl<'a, P: Physics> Driver<'a, P> {
             ));
         }
         Ok(sol.x)
+    }
+
+    /// A linear physics' solve: with the factorization of the matrix factorized last when `k` has its
+    /// pattern and values within 1e-10 (relative, the rounding of the instants' Δt) — the refinement runs
+    /// against `k` itself, so the solution is `k`'s — else with a new one, kept (the old one freed first).
+    /// Whether it factorized.
+    fn solve_kept(
+        &self,
+        k: faer::sparse::SparseColMat<usize, f64>,
+        rhs: &[f64],
+        opts: &SolverOptions,
+    ) -> std::result::Result<(solve::Solution, bool), solve::SolveError> {
+        let mut kept = self.kept.borrow_mut();
+        let close = |m: &faer::sparse::SparseColMat<usize, f64>| {
+            let scale = m.val().iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            m.col_ptr() == k.col_ptr()
+                && m.row_idx() == k.row_idx()
+                && m.val().iter().zip(k.val()).all(|(a, b)| (a - b).abs() <= 1e-10 * scale)
+        };
+        let same = kept.as_ref().is_some_and(|(m, _)| close(m));
+        if !same {
+            *kept = None;
+            let f = solve::factorize_with(k.as_ref(), opts, &mut self.analysis.borrow_mut())?;
+            *kept = Some((k.clone(), f));
+        }
+        let (_, f) = kept.as_mut().expect("factorized above");
+        let started = std::time::Instant::now();
+        let (x, residual, refinements) = solve::solve_refined_or_lu(f, k.as_ref(), rhs, opts)?;
+        solve::check_solution(k.as_ref(), &x, rhs, residual, opts)?;
+        let mut info = f.info.clone();
+        info.timings.solve = started.elapsed();
+        if same {
+            // The factorization's own times were counted when it was made.
+            info.timings.symbolic = Default::default();
+            info.timings.factorization = Default::default();
+            info.timings.condition = Default::default();
+        }
+        let sol = solve::Solution {
+            x,
+            method: info.method.unwrap_or(solve::Method::Lu),
+            timings: info.timings,
+            residual,
+            factor_nnz: info.factor_nnz,
+            refinements,
+            info,
+        };
+        Ok((sol, !same))
     }
 
     /// One step [t0, t1]: the conditions and forces of the loads, the prediction, then Newton corrections.
@@ -308,7 +417,7 @@ impl<'a, P: Physics> Driver<'a, P> {
         let n = self.phys.unknowns();
         let step = StepInfo { t0, t1 };
         let cons = self.loads.conditions(self.phys, t1)?;
-        let fext = self.loads.forces(self.phys, &step)?;
+        let fext = self.loads.forces(self.phys, &step, x)?;
         // The increments the conditions prescribe from the current state, then none.
         let incr = increments(&cons, x);
         let map = DofMap::build(n, &zero(&incr))
@@ -343,7 +452,7 @@ impl<'a, P: Physics> Driver<'a, P> {
         let mut history = Vec::new();
         loop {
             let now = self.assemble(&fr, &map, &unew, state, log)?;
-            let (rel, abs, reference, vanished) = self.residual(&map, &free, &fr, &x0, &unew, &now.fint);
+            let (rel, abs, reference, vanished) = self.residual(&map, &free, &fr, &x0, &unew, &now.fint, &now.state);
             history.push(rel);
             let solved = predicted || iters > 0;
             let done = if self.phys.linear() {
@@ -386,8 +495,13 @@ impl<'a, P: Physics> Driver<'a, P> {
                 })
                 .map_err(Failure::Fatal)?;
             let dx = self.factor_solve(&map, now.k, now.rhs, t1, log)?;
-            for (ui, di) in unew.iter_mut().zip(map.expand(&dx)) {
-                *ui += di;
+            let full = map.expand(&dx);
+            let rho = match &self.cfg.line_search {
+                Some(ls) => self.line_search(ls, &fr, &map, &unew, &full, &dx, state)?,
+                None => 1.0,
+            };
+            for (ui, di) in unew.iter_mut().zip(full) {
+                *ui += rho * di;
             }
             iters += 1;
         }

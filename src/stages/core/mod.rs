@@ -3,10 +3,12 @@
 //! (`loads`); the time stepping, prediction and Newton corrections over any `fem::physics::Physics`
 //! (`driver`); Code_Aster's convergence keywords, instants and archiving (`newton`); SOLVEUR and the
 //! solver's log (`solver`); function evaluation at a point and time (`eval`); and the builders of the
-//! physics from concepts: the elastic problem (`problem`) and the saturated HM one (`hm`).
+//! physics from concepts: the elastic problem (`problem`), the saturated HM one (`hm`) and heat conduction
+//! (`heat`).
 
 pub mod driver;
 pub mod eval;
+pub mod heat;
 pub mod hm;
 pub mod loads;
 pub mod newton;

@@ -155,11 +155,11 @@ impl Convergence {
             return Ok(Convergence { span: a.span, ..Convergence::default() });
         };
         for kw in ["RESI_REFE_RELA", "RESI_COMP_RELA"] {
-            if c.given(kw) {
+            if c.declares(kw) && c.given(kw) {
                 return Err(c.err(kw, "not supported yet (RESI_GLOB_RELA and RESI_GLOB_MAXI are)"));
             }
         }
-        if c.text("ARRET") == Some("NON") {
+        if c.text_if_declared("ARRET") == Some("NON") {
             return Err(
                 c.err("ARRET", "ARRET='NON' (going on after a step that did not converge) is not supported yet")
             );
@@ -243,8 +243,15 @@ pub struct Archive {
 }
 
 impl Archive {
-    /// ARCHIVAGE of a STAT_NON_LINE over `times` (the initial instant first).
+    /// ARCHIVAGE of a STAT_NON_LINE over `times` (the initial instant first); the last instant is always
+    /// stored.
     pub fn from_args(a: &Args, times: &[f64]) -> Result<Archive> {
+        Archive::from_args_keeping(a, times, true)
+    }
+
+    /// ARCHIVAGE over `times` (the initial instant first), the last instant stored when `keep_last` even
+    /// if ARCHIVAGE does not select it.
+    pub fn from_args_keeping(a: &Args, times: &[f64], keep_last: bool) -> Result<Archive> {
         let all = Archive { instants: times[1..].to_vec(), excluded: Vec::new() };
         let Some(arch) = a.fact("ARCHIVAGE") else { return Ok(all) };
         let excluded = arch.texts("CHAM_EXCLU");
@@ -278,7 +285,7 @@ impl Archive {
             }
         }
         let last = *times.last().expect("an initial instant at least");
-        if times.len() > 1 && out.last() != Some(&last) {
+        if keep_last && times.len() > 1 && out.last() != Some(&last) {
             out.push(last);
         }
         Ok(Archive { instants: out, excluded })
@@ -314,6 +321,65 @@ impl Archive {
             }
         }
         kept
+    }
+}
+
+/// A line search along a Newton correction Δ (RECH_LINEAIRE METHODE='CORDE', Code_Aster's secant
+/// method): the step ρ where `f(ρ) = G(x + ρ Δ) · Δ` vanishes, within RESI_LINE_RELA of `f(0)`, in at
+/// most ITER_LINE_MAXI secants, ρ kept within [RHO_MIN, RHO_MAX] and out of ]−RHO_EXCL, RHO_EXCL[.
+#[derive(Debug, Clone, Copy)]
+pub struct LineSearch {
+    pub resi: f64,
+    pub iter_max: usize,
+    pub rho_min: f64,
+    pub rho_max: f64,
+    pub rho_excl: f64,
+}
+
+impl LineSearch {
+    fn limits(&self, rho: f64) -> f64 {
+        let mut r = rho.clamp(self.rho_min, self.rho_max);
+        if (-self.rho_excl..0.0).contains(&r) {
+            r = -self.rho_excl;
+        }
+        if (0.0..=self.rho_excl).contains(&r) {
+            r = self.rho_excl;
+        }
+        r
+    }
+
+    /// The best ρ found for `f`, and the number of evaluations beyond `f(0)`.
+    pub fn run<E>(
+        &self,
+        f: &mut dyn FnMut(f64) -> std::result::Result<f64, E>,
+    ) -> std::result::Result<(f64, usize), E> {
+        let f0 = f(0.0)?;
+        let fcvg = (self.resi * f0).abs();
+        let (mut rhom, mut rho, mut fm) = (0.0, 1.0, f0);
+        let (mut rhoopt, mut fopt) = (rho, f64::MAX);
+        let mut evals = 0;
+        for _ in 0..=self.iter_max {
+            let fr = f(rho)?;
+            evals += 1;
+            if fr.abs() <= fopt {
+                rhoopt = rho;
+                fopt = fr.abs();
+                if fr.abs() < fcvg {
+                    return Ok((rhoopt, evals));
+                }
+            }
+            let previous = rho;
+            rho = if (fr - fm).abs() > f64::MIN_POSITIVE {
+                self.limits((fr * rhom - fm * rho) / (fr - fm))
+            } else if fr * (rho - rhom) * (fr - fm) <= 0.0 {
+                self.rho_max
+            } else {
+                self.rho_min
+            };
+            rhom = previous;
+            fm = fr;
+        }
+        Ok((rhoopt, evals))
     }
 }
 
@@ -376,5 +442,26 @@ mod tests {
     fn inf_norm_of_mixed_signs() {
         assert_eq!(inf_norm(&[1.0, -3.5, 2.0]), 3.5);
         assert_eq!(inf_norm(&[]), 0.0);
+    }
+
+    fn search() -> LineSearch {
+        LineSearch { resi: 0.1, iter_max: 3, rho_min: 1e-2, rho_max: 10.0, rho_excl: 0.9e-2 }
+    }
+
+    /// On a linear f the first secant lands on its root: f(ρ) = 2 (ρ − 0.4).
+    #[test]
+    fn line_search_finds_the_root_of_a_linear_function() {
+        let (rho, evals) = search().run::<()>(&mut |r| Ok(2.0 * (r - 0.4))).expect("no error");
+        assert!((rho - 0.4).abs() < 1e-12, "{rho}");
+        assert_eq!(evals, 2);
+    }
+
+    /// A full step that already satisfies the criterion is kept; a root beyond RHO_MAX is clamped to it.
+    #[test]
+    fn line_search_keeps_a_good_step_and_clamps_to_rho_max() {
+        let (rho, evals) = search().run::<()>(&mut |r| Ok(1.0 - 0.95 * r)).expect("no error");
+        assert_eq!((rho, evals), (1.0, 1));
+        let (rho, _) = search().run::<()>(&mut |r| Ok(1.0 - 0.01 * r)).expect("no error");
+        assert_eq!(rho, 10.0);
     }
 }

@@ -2,10 +2,15 @@
 //! NEWTON, SOLVEUR, ARCHIVAGE, ETAT_INIT, COMPORTEMENT, SCHEMA_THM, CONTACT and OPTION become typed
 //! [`Settings`], and the physics that solves the command is chosen here ([`PhysicsKind`], from the model),
 //! which decides what of these keywords it takes: a keyword the physics does not implement stops the run
-//! by name here, so that nothing below this module looks at the command's keywords again. A physics and the
+//! by name here, so that nothing below this module looks at the command's keywords again. THER_LINEAIRE
+//! and THER_NON_LINE read theirs in `thermal` into the same settings. A physics and the
 //! core's driver read the settings and locate their errors at a keyword through [`Settings::err`].
 
-use super::newton::{Archive, Convergence};
+mod thermal;
+
+pub use thermal::{HeatInitial, HeatSettings};
+
+use super::newton::{Archive, Convergence, LineSearch};
 use super::solver::{solveur, Solveur};
 use crate::catalog::args::Args;
 use crate::concepts::model::Load;
@@ -20,6 +25,8 @@ use std::rc::Rc;
 pub enum Command {
     MecaStatique,
     StatNonLine,
+    TherLineaire,
+    TherNonLine,
 }
 
 impl Command {
@@ -27,7 +34,14 @@ impl Command {
         match self {
             Command::MecaStatique => "MECA_STATIQUE",
             Command::StatNonLine => "STAT_NON_LINE",
+            Command::TherLineaire => "THER_LINEAIRE",
+            Command::TherNonLine => "THER_NON_LINE",
         }
+    }
+
+    /// A command of heat conduction.
+    pub fn thermal(self) -> bool {
+        matches!(self, Command::TherLineaire | Command::TherNonLine)
     }
 }
 
@@ -41,6 +55,8 @@ pub enum PhysicsKind {
     /// A model enriched by MODI_MODELE_XFEM (mechanics, or HM with its hydraulics), with or without
     /// cohesive interfaces.
     Xfem,
+    /// Heat conduction on a thermal model (PHENOMENE='THERMIQUE').
+    Thermal,
 }
 
 /// A load of EXCIT: the load, its multiplier function and where it was given.
@@ -121,6 +137,8 @@ impl PhysicsKind {
                 keywords: &["ETAT_INIT", "ARCHIVAGE", "SCHEMA_THM", "CONTACT"],
                 etat_init: &["EVOL_NOLI", "NUME_ORDRE", "INST", "CRITERE", "PRECISION"],
             },
+            // The thermal commands' keywords are read by `thermal::read`.
+            PhysicsKind::Thermal => Takes { keywords: &[], etat_init: &[] },
         }
     }
 }
@@ -154,6 +172,10 @@ pub struct Settings {
     pub contact: Option<ConceptRef>,
     /// MECA_STATIQUE OPTION: SIEF_ELGA is computed unless 'SANS'.
     pub sief: bool,
+    /// RECH_LINEAIRE along each Newton correction but the first of a step.
+    pub line_search: Option<LineSearch>,
+    /// THER_LINEAIRE, THER_NON_LINE: the θ-scheme, the initial state, RESULTAT continued.
+    pub heat: Option<HeatSettings>,
 }
 
 impl Settings {
@@ -162,6 +184,22 @@ impl Settings {
     pub fn read(a: &Args, command: Command) -> Result<Settings> {
         let mut sites = BTreeMap::new();
         let model = a.req_concept("MODELE")?;
+        let thermal_model = model.model()?.is_thermal();
+        if command.thermal() {
+            if !thermal_model {
+                return Err(a.err(
+                    "MODELE",
+                    format!("{} is not a thermal model (AFFE_MODELE PHENOMENE='THERMIQUE')", model.label()),
+                ));
+            }
+            return thermal::read(a, command, model);
+        }
+        if thermal_model {
+            return Err(a.err(
+                "MODELE",
+                format!("{} is a thermal model: THER_LINEAIRE or THER_NON_LINE solves it", model.label()),
+            ));
+        }
         sites.insert("MODELE".to_string(), a.span_of("MODELE"));
         let physics = {
             let m = model.model()?;
@@ -265,6 +303,8 @@ impl Settings {
             schema_thm,
             contact,
             sief,
+            line_search: None,
+            heat: None,
         })
     }
 

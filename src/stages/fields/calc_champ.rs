@@ -175,6 +175,10 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             format!("CALC_CHAMP on a result of the X-FEM model {} is not supported yet", model.label()),
         ));
     }
+    if model.model()?.is_thermal() {
+        return super::thermal::calc_champ_ther(a, &rc, &model, &chmat, steps);
+    }
+    a.refuse(&["THERMIQUE"])?;
     let hm = model.model()?.elements.iter().flatten().any(|e| e.modelisation.is_hm()) && model.model()?.xfem.is_none();
     let mut wanted = Vec::new();
     let kws: &[&str] = if hm {

@@ -19,6 +19,7 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         PhysicsKind::Xfem => return super::xfem::stat_non_line_xfem(ctx, &cfg),
         PhysicsKind::Hm => return super::hm::stat_non_line_hm(ctx, &cfg),
         PhysicsKind::Elastic => {}
+        PhysicsKind::Thermal => unreachable!("the settings refuse a thermal model in STAT_NON_LINE"),
     }
     for b in &cfg.behaviours {
         if b.relation != "ELAS" {

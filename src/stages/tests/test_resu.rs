@@ -86,11 +86,26 @@ fn locate(field: &Field, k: usize, mesh: &Mesh, occ: &Args, mesh_name: &str) -> 
         Field::Elno { cells, .. } => {
             let c =
                 one_cell(mesh, occ, mesh_name)?.ok_or_else(|| occ.err("MAILLE", "MAILLE or GROUP_MA is required"))?;
-            let node =
-                one_node(mesh, occ, mesh_name)?.ok_or_else(|| occ.err("NOEUD", "NOEUD or GROUP_NO is required"))?;
-            let i = mesh.cells[c].iter().position(|&x| x == node).ok_or_else(|| {
-                occ.err("NOEUD", format!("node {} is not a node of cell {}", mesh.node_names[node], mesh.cell_names[c]))
-            })?;
+            // POINT: the cell's node of that local number, else the node of NOEUD / GROUP_NO.
+            let i = match occ.declares("POINT").then(|| occ.int("POINT")).flatten() {
+                Some(p) if p >= 1 && p as usize <= mesh.cells[c].len() => p as usize - 1,
+                Some(p) => {
+                    let nno = mesh.cells[c].len();
+                    return Err(
+                        occ.err("POINT", format!("cell {} has {nno} nodes, point {p} requested", mesh.cell_names[c]))
+                    );
+                }
+                None => {
+                    let node = one_node(mesh, occ, mesh_name)?
+                        .ok_or_else(|| occ.err("NOEUD", "NOEUD, GROUP_NO or POINT is required"))?;
+                    mesh.cells[c].iter().position(|&x| x == node).ok_or_else(|| {
+                        occ.err(
+                            "NOEUD",
+                            format!("node {} is not a node of cell {}", mesh.node_names[node], mesh.cell_names[c]),
+                        )
+                    })?
+                }
+            };
             let vals = cells[c]
                 .as_ref()
                 .ok_or_else(|| occ.err("MAILLE", format!("the field has no value on cell {}", mesh.cell_names[c])))?;
@@ -187,7 +202,7 @@ pub fn test_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                         w.push(format!("{kw} {t}"));
                     }
                 }
-                if let Some(p) = occ.int("POINT") {
+                if let Some(p) = occ.declares("POINT").then(|| occ.int("POINT")).flatten() {
                     w.push(format!("POINT {p}"));
                 }
                 (v, w.join(" "))

@@ -157,6 +157,12 @@ pub fn modi_modele_xfem(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> 
     // integrals agree (docs/wtnv149.md); that is checked cell by cell below.
     // Quadratic cells keep the faithful SOUS_ELEMENTS only.
     let mo_in = a.req_concept("MODELE_IN")?;
+    if mo_in.model()?.is_thermal() {
+        return Err(a.err(
+            "MODELE_IN",
+            format!("{} is a thermal model: X-FEM on PHENOMENE='THERMIQUE' is not supported yet", mo_in.label()),
+        ));
+    }
     let quadratic_model = {
         let m = mo_in.model()?;
         let mesh = m.current_mesh();

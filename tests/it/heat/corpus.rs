@@ -1,0 +1,29 @@
+//! Thermal cases of Code_Aster's 2025 corpus (../shared/corpus/astest-2025, read in place), run unmodified:
+//! each ends OK with exactly its number of OK check lines. Steady and transient THER_LINEAIRE on PLAN,
+//! AXIS and 3D cells (linear and quadratic), THER_NON_LINE with THER_NL materials, FLUX_NL, RAYONNEMENT,
+//! SOUR_NL and ECHANGE, ETAT_INIT from a field or a result, RESULTAT continued, CALC_CHAMP's FLUX_*.
+use crate::common::run_corpus_cases;
+
+const CASES: [(&str, usize); 16] = [
+    ("ttll01a", 16),
+    ("ttll01g", 32),
+    ("ttll100b", 32),
+    ("ttlv01a", 100),
+    ("ttlv100a", 32),
+    ("tpla04a", 48),
+    ("tpll01d", 14),
+    ("tplp303d", 48),
+    ("tplv305b", 136),
+    ("tpnv01a", 148),
+    ("tpnl300b", 18),
+    ("tpna300c", 60),
+    ("ttnl02c", 32),
+    ("ttnl100a", 14),
+    ("ttnl302b", 160),
+    ("ttnl303a", 77),
+];
+
+#[test]
+fn corpus_thermal_cases_pass() {
+    run_corpus_cases(&scratch!("corpus"), &CASES);
+}
