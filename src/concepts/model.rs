@@ -249,6 +249,30 @@ pub struct MaterialField {
     pub mesh: Rc<Mesh>,
     /// Per cell: the material concept assigned, if any.
     pub cells: Vec<Option<ConceptRef>>,
+    /// AFFE_VARC: the command variables on cells (the temperature).
+    pub varc: Vec<Varc>,
+}
+
+/// One occurrence of AFFE_VARC: a command variable on cells, from a result or a field.
+#[derive(Debug, Clone)]
+pub struct Varc {
+    /// NOM_VARC.
+    pub name: String,
+    pub cells: Vec<usize>,
+    pub source: VarcSource,
+    /// VALE_REF: the value at which the variable strains nothing.
+    pub vale_ref: Option<f64>,
+    /// PROL_GAUCHE and PROL_DROITE of EVOL: 'EXCLU', 'CONSTANT' or 'LINEAIRE'.
+    pub prol: (String, String),
+}
+
+/// Where a command variable comes from.
+#[derive(Debug, Clone)]
+pub enum VarcSource {
+    /// EVOL: a result, its field NOM_CHAM interpolated in time.
+    Evol { result: ConceptRef, field: String },
+    /// CHAM_GD: a field on nodes, the same at every instant.
+    Field(ConceptRef),
 }
 
 /// A load value: a real, or a function of space (and time) evaluated later.

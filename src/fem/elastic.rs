@@ -28,6 +28,19 @@ pub struct Elastic {
     linear: bool,
     /// SIEF_ELGA is computed with DEPL.
     sief: bool,
+    /// The thermal strain of AFFE_VARC's temperature, where the model has one.
+    thermal: Option<ThermalStrain>,
+}
+
+/// The temperature at the nodes at an instant (NaN where it is not known), or why it cannot be had.
+pub type NodalTemperature = Box<dyn Fn(f64) -> Result<Vec<f64>, Error>>;
+
+/// A thermal strain `α (T − T_ref)` of the bulk cells (AFFE_VARC NOM_VARC='TEMP' with ELAS's ALPHA).
+pub struct ThermalStrain {
+    /// The sources of the temperature (one per AFFE_VARC occurrence).
+    pub sources: Vec<NodalTemperature>,
+    /// Per mesh cell: α, T_ref and the index of its source.
+    pub cells: Vec<Option<(f64, f64, usize)>>,
 }
 
 impl Elastic {
@@ -53,7 +66,54 @@ impl Elastic {
             stiffness.push(ke);
             dofs.push(&numbering.cell_dofs(&mesh.cells[c]).expect("bulk cells are numbered"));
         }
-        Ok(Elastic { mesh, modelisation, bulk, skin, materials, numbering, stiffness, dofs, linear, sief })
+        Ok(Elastic {
+            mesh,
+            modelisation,
+            bulk,
+            skin,
+            materials,
+            numbering,
+            stiffness,
+            dofs,
+            linear,
+            sief,
+            thermal: None,
+        })
+    }
+
+    /// The same physics with a thermal strain.
+    pub fn with_thermal(mut self, thermal: ThermalStrain) -> Elastic {
+        self.thermal = Some(thermal);
+        self
+    }
+
+    /// `α (T − T_ref)` at the nodes of every bulk cell with a thermal strain at `t` (None without one).
+    fn theta(&self, t: f64) -> Result<Vec<Option<Vec<f64>>>, Error> {
+        let mesh = &*self.mesh;
+        let mut out = vec![None; mesh.cells.len()];
+        let Some(th) = &self.thermal else { return Ok(out) };
+        let mut temps: Vec<Option<Vec<f64>>> = vec![None; th.sources.len()];
+        for &c in &self.bulk {
+            let Some((alpha, tref, k)) = th.cells[c] else { continue };
+            if temps[k].is_none() {
+                temps[k] = Some((th.sources[k])(t)?);
+            }
+            let tk = temps[k].as_ref().expect("just computed");
+            let mut v = Vec::with_capacity(mesh.cells[c].len());
+            for &n in &mesh.cells[c] {
+                let tn = tk.get(n).copied().unwrap_or(f64::NAN);
+                if !tn.is_finite() {
+                    return Err(Error::runtime(format!(
+                        "AFFE_VARC: no temperature at node {} of cell {} at INST={t}",
+                        mesh.node_names[n], mesh.cell_names[c]
+                    ))
+                    .at_keyword("CHAM_MATER"));
+                }
+                v.push(alpha * (tn - tref));
+            }
+            out[c] = Some(v);
+        }
+        Ok(out)
     }
 
     /// The unknowns of a skin cell carrying a surface load.
@@ -77,7 +137,8 @@ fn excit(msg: String) -> Error {
 }
 
 impl Physics for Elastic {
-    type State = ();
+    /// The instant of the state (the thermal strain is read there).
+    type State = f64;
 
     fn describe(&self) -> String {
         format!("{}, RELATION='ELAS'", self.modelisation.name())
@@ -97,12 +158,12 @@ impl Physics for Elastic {
 
     fn assemble(
         &self,
-        _step: &StepInfo,
+        step: &StepInfo,
         x: &[f64],
-        _prev: &(),
+        _prev: &f64,
         mut tangent: Option<&mut Assembler>,
         fint: &mut [f64],
-    ) -> Result<(), Failure> {
+    ) -> Result<f64, Failure> {
         for (i, ke) in self.stiffness.iter().enumerate() {
             let dofs = self.dofs.get(i);
             let nd = dofs.len();
@@ -113,7 +174,7 @@ impl Physics for Elastic {
                 asm.add_matrix(dofs, ke);
             }
         }
-        Ok(())
+        Ok(step.t1)
     }
 
     fn dof(&self, load: &str, node: usize, component: &str) -> Result<Option<usize>, Error> {
@@ -134,7 +195,7 @@ impl Physics for Elastic {
         self.mesh.node_names[node].clone()
     }
 
-    fn forces(&self, loads: &[Load], _step: &StepInfo, f: &mut [f64]) -> Result<(), Error> {
+    fn forces(&self, loads: &[Load], step: &StepInfo, f: &mut [f64]) -> Result<(), Error> {
         let (mesh, md) = (&*self.mesh, self.modelisation);
         let dim = md.dim();
         let mut add = |dofs: &[usize], fe: &[f64]| {
@@ -142,6 +203,14 @@ impl Physics for Elastic {
                 f[*d] += v;
             }
         };
+        // The thermal strain acts as the forces ∫ Bᵀ D ε_th.
+        for (c, theta) in self.theta(step.t1)?.into_iter().enumerate() {
+            let Some(theta) = theta else { continue };
+            let mat = &self.materials[c].as_ref().expect("a bulk cell").0;
+            let fe = elasticity::thermal_force(md, mat, mesh.cell_types[c], &coords_of(mesh, c), &theta)
+                .map_err(|e| Error::runtime(format!("cell {}: {e}", mesh.cell_names[c])))?;
+            add(&self.numbering.cell_dofs(&mesh.cells[c]).expect("a bulk cell"), &fe);
+        }
         for load in loads {
             let name = &load.name;
             for item in &load.forces {
@@ -237,7 +306,7 @@ impl Physics for Elastic {
         Ok(())
     }
 
-    fn fields(&self, u: &[f64], _state: &()) -> Result<Vec<(String, Field)>, Error> {
+    fn fields(&self, u: &[f64], t: &f64) -> Result<Vec<(String, Field)>, Error> {
         let (mesh, md) = (&*self.mesh, self.modelisation);
         let dim = md.dim();
         let mut depl = vec![f64::NAN; mesh.coords.len() * dim];
@@ -249,12 +318,17 @@ impl Physics for Elastic {
         let mut fields = vec![("DEPL".to_string(), Field::Node { components: comps, values: depl })];
         if self.sief {
             let mut cells = vec![None; mesh.cells.len()];
+            let thetas = self.theta(*t)?;
             for &c in &self.bulk {
                 let ue: Vec<f64> =
                     self.numbering.cell_dofs(&mesh.cells[c]).expect("a bulk cell").iter().map(|&d| u[d]).collect();
                 let mat = &self.materials[c].as_ref().expect("a bulk cell").0;
-                let g = elasticity::gauss_fields(md, mat, mesh.cell_types[c], &coords_of(mesh, c), &ue)
-                    .map_err(|e| Error::runtime(e.to_string()))?;
+                let (t_c, x_c) = (mesh.cell_types[c], coords_of(mesh, c));
+                let g = match &thetas[c] {
+                    Some(theta) => elasticity::gauss_fields_thermal(md, mat, t_c, &x_c, &ue, theta),
+                    None => elasticity::gauss_fields(md, mat, t_c, &x_c, &ue),
+                }
+                .map_err(|e| Error::runtime(e.to_string()))?;
                 cells[c] = Some(g.sig.iter().flat_map(|s| s[..md.nsig()].to_vec()).collect());
             }
             let names = md.sigma_names().iter().map(|s| s.to_string()).collect();

@@ -697,6 +697,73 @@ pub fn gauss_fields(
     Ok(out)
 }
 
+/// θ at a point from its values at the nodes.
+fn at_point(g: &GaussGeom, nodal: &[f64]) -> f64 {
+    nodal.iter().enumerate().map(|(a, v)| g.n[a] * v).sum()
+}
+
+/// The nodal forces of an isotropic thermal strain `θ (1, 1, 1, 0, 0, 0)`, `θ = α (T − T_ref)` given at the
+/// cell's nodes and interpolated at the `RIGI` points: `∫ Bᵀ D ε_th` (node by node). Under C_PLAN the
+/// strain out of the plane is free (σzz = 0).
+pub fn thermal_force(
+    m: Modelisation,
+    mat: &IsoElastic,
+    t: CellType,
+    coords: &[[f64; 3]],
+    theta: &[f64],
+) -> Result<Vec<f64>, ElementError> {
+    mat.check(m)?;
+    let rule = rigi_rule_of(m, t);
+    let gg = gauss_geometry(m, t, coords, &rule)?;
+    let (dim, ns, nno) = (m.dim(), m.nsig(), t.nnodes());
+    let mut v = vec![0.0; nno * dim];
+    for g in &gg {
+        let th = at_point(g, theta);
+        let sig = stress_from_strain(m, mat, &[th, th, th, 0.0, 0.0, 0.0]);
+        for a in 0..nno {
+            let b = b_node(m, g, a);
+            for i in 0..dim {
+                v[a * dim + i] += g.w * (0..ns).map(|p| b[p][i] * sig[p]).sum::<f64>();
+            }
+        }
+    }
+    Ok(v)
+}
+
+/// [`gauss_fields`] with a thermal strain `θ (1, 1, 1, 0, 0, 0)` (`θ` at the nodes): the strains are the
+/// total ones, the stresses `D (ε − ε_th)`.
+pub fn gauss_fields_thermal(
+    m: Modelisation,
+    mat: &IsoElastic,
+    t: CellType,
+    coords: &[[f64; 3]],
+    u: &[f64],
+    theta: &[f64],
+) -> Result<GaussFields, ElementError> {
+    mat.check(m)?;
+    let rule = rigi_rule_of(m, t);
+    let gg = gauss_geometry(m, t, coords, &rule)?;
+    let nno = t.nnodes();
+    assert_eq!(u.len(), nno * m.dim());
+    let mut out = GaussFields { points: vec![], eps: vec![], sig: vec![] };
+    for g in &gg {
+        let th = at_point(g, theta);
+        let mut e = strain_at(m, mat, g, nno, u);
+        if m == Modelisation::CPlan {
+            // σzz = 0: εzz = −ν/(1−ν) (εxx + εyy − 2θ) + θ.
+            e[2] = -mat.nu / (1.0 - mat.nu) * (e[0] + e[1] - 2.0 * th) + th;
+        }
+        let mut mech = e;
+        for v in mech.iter_mut().take(3) {
+            *v -= th;
+        }
+        out.points.push(g.x);
+        out.sig.push(stress_from_strain(m, mat, &mech));
+        out.eps.push(e);
+    }
+    Ok(out)
+}
+
 /// The vertex (linear) cell type of `t` (QUAD4 for QUAD8, ...).
 pub fn vertex_type(t: CellType) -> CellType {
     use CellType::*;

@@ -1,7 +1,7 @@
 //! DEFI_MATERIAU and AFFE_MATERIAU: materials and the material field.
 
 use crate::catalog::args::{ArgValue, Args, Val};
-use crate::concepts::model::{MatValue, Material, MaterialField};
+use crate::concepts::model::{MatValue, Material, MaterialField, Varc, VarcSource};
 use crate::concepts::ConceptData;
 use crate::diag::Result;
 use crate::stages::select::select_cells;
@@ -46,7 +46,6 @@ pub fn defi_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 // ------------------------------------------------------------------ AFFE_MATERIAU
 
 pub fn affe_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    a.refuse(&["AFFE_VARC"])?;
     let (mesh, name) = match (a.concept("MAILLAGE"), a.concept("MODELE")) {
         (Some(mc), _) => (mc.mesh()?, mc.label()),
         (None, Some(mo)) => {
@@ -65,5 +64,52 @@ pub fn affe_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             cells[c] = Some(maters[0].clone());
         }
     }
-    Ok(Some(ConceptData::MaterialField(MaterialField { mesh, cells })))
+    let mut varc = Vec::new();
+    for occ in a.facts("AFFE_VARC") {
+        varc.push(affe_varc(&mesh, occ, &name)?);
+    }
+    Ok(Some(ConceptData::MaterialField(MaterialField { mesh, cells, varc })))
+}
+
+/// One occurrence of AFFE_VARC: the temperature (NOM_VARC='TEMP') from an EVOL_THER (its TEMP field) or
+/// a field on nodes; the other command variables stop by name.
+fn affe_varc(mesh: &crate::mesh::Mesh, occ: &Args, name: &str) -> Result<Varc> {
+    let nom = occ.req_text("NOM_VARC")?.to_string();
+    if nom != "TEMP" {
+        return Err(occ.err("NOM_VARC", format!("NOM_VARC='{nom}' is not supported yet (TEMP is)")));
+    }
+    occ.refuse(&["FONC_INST"])?;
+    // Without TOUT, GROUP_MA or MAILLE, the variable is on every cell.
+    let cells = if ["TOUT", "GROUP_MA", "MAILLE"].iter().any(|k| occ.has(k)) {
+        select_cells(mesh, occ, name)?
+    } else {
+        (0..mesh.cells.len()).collect()
+    };
+    let source = match (occ.concept("EVOL"), occ.concept("CHAM_GD")) {
+        (Some(r), _) => {
+            if r.kind() != crate::concepts::ConceptKind::EvolTher {
+                return Err(occ.err("EVOL", format!("{} is not a thermal result (EVOL_THER)", r.label())));
+            }
+            let field = occ.text("NOM_CHAM").unwrap_or("TEMP").to_string();
+            if field != "TEMP" {
+                return Err(occ.err("NOM_CHAM", format!("NOM_CHAM='{field}' is not supported yet (TEMP is)")));
+            }
+            VarcSource::Evol { result: r, field }
+        }
+        (None, Some(f)) => {
+            if f.kind() != crate::concepts::ConceptKind::ChamNo {
+                return Err(occ.err("CHAM_GD", format!("{} is not a field on nodes (cham_no)", f.label())));
+            }
+            VarcSource::Field(f)
+        }
+        (None, None) => return Err(occ.err("NOM_VARC", "EVOL or CHAM_GD is required")),
+    };
+    let prol = |k: &str| occ.text_if_declared(k).unwrap_or("EXCLU").to_string();
+    Ok(Varc {
+        name: nom,
+        cells,
+        source,
+        vale_ref: occ.real("VALE_REF"),
+        prol: (prol("PROL_GAUCHE"), prol("PROL_DROITE")),
+    })
 }

@@ -1,11 +1,11 @@
 //! The checked elastic problem of a model and material field: modelisation, bulk cells, materials, dof numbering.
 
 use super::settings::Settings;
-use crate::concepts::model::{Material, MaterialField, Role};
+use crate::concepts::model::{Material, MaterialField, Role, VarcSource};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
 use crate::fem::dofs::DofNumbering;
-use crate::fem::elastic::Elastic;
+use crate::fem::elastic::{Elastic, NodalTemperature, ThermalStrain};
 use crate::fem::elasticity::{IsoElastic, Modelisation};
 use crate::mesh::Mesh;
 use std::rc::Rc;
@@ -164,6 +164,114 @@ pub fn elastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Elastic> {
         let m = cfg.model.model()?;
         m.elements.iter().map(|e| e.as_ref().is_some_and(|e| e.role == Role::Skin)).collect()
     };
-    Elastic::new(p.mesh, p.modelisation, p.bulk, skin, p.materials, p.numbering, cfg.statics(), cfg.sief)
-        .map_err(|e| e.at(cfg.span))
+    let thermal = thermal_strain(chmat, &p).map_err(|e| cfg.locate(e, "CHAM_MATER"))?;
+    let e = Elastic::new(p.mesh, p.modelisation, p.bulk, skin, p.materials, p.numbering, cfg.statics(), cfg.sief)
+        .map_err(|e| e.at(cfg.span))?;
+    Ok(match thermal {
+        Some(t) => e.with_thermal(t),
+        None => e,
+    })
+}
+
+/// The thermal strain of the material field's AFFE_VARC (NOM_VARC='TEMP') on the problem's bulk cells:
+/// α from ELAS's ALPHA (none: no thermal strain), T_ref from VALE_REF, the temperature from the EVOL_THER
+/// (interpolated linearly in time between its instants, PROL_GAUCHE / PROL_DROITE beyond) or the field.
+fn thermal_strain(chmat: &ConceptRef, p: &Problem) -> Result<Option<ThermalStrain>> {
+    let data = chmat.data();
+    let ConceptData::MaterialField(MaterialField { varc, cells: mats, .. }) = &*data else { return Ok(None) };
+    if varc.is_empty() {
+        return Ok(None);
+    }
+    let nnodes = p.mesh.nnodes();
+    let mut sources: Vec<NodalTemperature> = Vec::new();
+    let mut cells = vec![None; p.mesh.cells.len()];
+    let bulk: std::collections::HashSet<usize> = p.bulk.iter().copied().collect();
+    for (k, v) in varc.iter().enumerate() {
+        let tref = v.vale_ref.ok_or_else(|| {
+            Error::runtime("AFFE_VARC: NOM_VARC='TEMP' needs VALE_REF (the temperature that strains nothing)")
+        })?;
+        for &c in v.cells.iter().filter(|c| bulk.contains(c)) {
+            let Some(mc) = &mats[c] else { continue };
+            let md = mc.data();
+            let ConceptData::Material(mat) = &*md else { continue };
+            let beh = if mat.behaviours.contains_key("ELAS") { "ELAS" } else { "ELAS_FO" };
+            if let Some(alpha) = mat_param(mat, beh, "ALPHA", &p.mesh.cell_names[c])? {
+                cells[c] = Some((alpha, tref, k));
+            }
+        }
+        sources.push(match &v.source {
+            VarcSource::Field(f) => {
+                let values = temp_of_field(&f.field()?.field, nnodes, &f.label())?;
+                Box::new(move |_t| Ok(values.clone()))
+            }
+            VarcSource::Evol { result, field } => {
+                let (result, field, prol) = (result.clone(), field.clone(), v.prol.clone());
+                Box::new(move |t| temp_of_result(&result, &field, &prol, t, nnodes))
+            }
+        });
+    }
+    Ok(Some(ThermalStrain { sources, cells }))
+}
+
+/// The component TEMP of a field on nodes, per node (NaN where it has none).
+fn temp_of_field(f: &crate::concepts::result::Field, nnodes: usize, what: &str) -> Result<Vec<f64>> {
+    let crate::concepts::result::Field::Node { components, values } = f else {
+        return Err(Error::runtime(format!("AFFE_VARC: {what} is not a field on nodes")));
+    };
+    let k = components
+        .iter()
+        .position(|c| c == "TEMP")
+        .ok_or_else(|| Error::runtime(format!("AFFE_VARC: {what} has no component TEMP")))?;
+    let n = components.len();
+    Ok((0..nnodes).map(|i| values.get(i * n + k).copied().unwrap_or(f64::NAN)).collect())
+}
+
+/// The temperature of `result` at `t`: its field `field` at that instant, or interpolated linearly between
+/// the two around it; before the first / after the last as PROL_GAUCHE / PROL_DROITE say (EXCLU: an error,
+/// CONSTANT: the end value, LINEAIRE: the line of the two end instants).
+fn temp_of_result(
+    result: &ConceptRef,
+    field: &str,
+    prol: &(String, String),
+    t: f64,
+    nnodes: usize,
+) -> Result<Vec<f64>> {
+    let r = result.result()?;
+    let mut steps: Vec<(f64, &crate::concepts::result::Field)> =
+        r.steps.iter().filter_map(|s| s.fields.get(field).map(|f| (s.inst, f))).collect();
+    steps.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let label = result.label();
+    let at = |i: usize| temp_of_field(steps[i].1, nnodes, &label);
+    let blend = |i: usize, j: usize| -> Result<Vec<f64>> {
+        let (a, b) = (at(i)?, at(j)?);
+        let w = (t - steps[i].0) / (steps[j].0 - steps[i].0);
+        Ok(a.iter().zip(&b).map(|(x, y)| x + w * (y - x)).collect())
+    };
+    let n = steps.len();
+    if n == 0 {
+        return Err(Error::runtime(format!("AFFE_VARC: {label} holds no field {field}")));
+    }
+    let tol = 1e-10 * t.abs().max(1.0);
+    if let Some(i) = steps.iter().position(|s| (s.0 - t).abs() <= tol) {
+        return at(i);
+    }
+    let beyond = |side: &str, kw: &str, end: usize, other: usize| -> Result<Vec<f64>> {
+        match side {
+            "CONSTANT" => at(end),
+            "LINEAIRE" if n > 1 => blend(other.min(end), other.max(end)),
+            _ => Err(Error::runtime(format!(
+                "AFFE_VARC: INST={t} lies outside the instants of {label} ({} to {}) and {kw}='{side}'",
+                steps[0].0,
+                steps[n - 1].0
+            ))),
+        }
+    };
+    if t < steps[0].0 {
+        return beyond(&prol.0, "PROL_GAUCHE", 0, 1);
+    }
+    if t > steps[n - 1].0 {
+        return beyond(&prol.1, "PROL_DROITE", n - 1, n.saturating_sub(2));
+    }
+    let i = steps.iter().rposition(|s| s.0 < t).expect("t lies within the instants");
+    blend(i, i + 1)
 }

@@ -225,6 +225,10 @@ impl Settings {
             }
         }
         let chmat = a.concept("CHAM_MATER");
+        if physics != PhysicsKind::Elastic && chmat.as_ref().is_some_and(has_varc) {
+            let what = if physics == PhysicsKind::Hm { "a hydro-mechanical" } else { "an X-FEM" };
+            return Err(a.err("CHAM_MATER", format!("AFFE_VARC on {what} model is not supported yet")));
+        }
         for kw in ["CHAM_MATER", "EXCIT", "INCREMENT", "CONVERGENCE", "SOLVEUR", "ARCHIVAGE", "ETAT_INIT", "CONTACT"] {
             if a.declares(kw) && a.given(kw) {
                 sites.insert(kw.to_string(), a.span_of(kw));
@@ -459,4 +463,9 @@ fn behaviours(a: &Args) -> Result<Vec<Behaviour>> {
         });
     }
     Ok(out)
+}
+
+/// Does the material field carry command variables (AFFE_VARC)?
+pub(crate) fn has_varc(chmat: &ConceptRef) -> bool {
+    matches!(&*chmat.data(), ConceptData::MaterialField(m) if !m.varc.is_empty())
 }

@@ -29,8 +29,9 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let chmat = cfg.chmat()?;
     let p = elastic(&cfg, &chmat)?;
     let mut u = vec![0.0; p.unknowns()];
+    let mut t0 = cfg.times[0];
     let mut log = StepLog::default();
-    let steps = Driver::new(&cfg, &p, cfg.solveur.opts).run(&mut u, &mut (), true, &mut log)?;
+    let steps = Driver::new(&cfg, &p, cfg.solveur.opts).run(&mut u, &mut t0, true, &mut log)?;
     let note = cfg.newton_note.clone().map(|n| n + "\n").unwrap_or_default();
     let solver = log.last_solve.as_ref().map_or(String::new(), |(info, _, _)| {
         format!(

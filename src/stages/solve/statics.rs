@@ -24,8 +24,9 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let p = elastic(&cfg, &chmat)?;
     let t_setup = t_all.elapsed();
     let mut u = vec![0.0; p.unknowns()];
+    let mut t0 = cfg.times[0];
     let mut log = StepLog::default();
-    let steps = Driver::new(&cfg, &p, cfg.solveur.opts).run(&mut u, &mut (), false, &mut log)?;
+    let steps = Driver::new(&cfg, &p, cfg.solveur.opts).run(&mut u, &mut t0, false, &mut log)?;
     let (info, residual, refinements) = log.last_solve.clone().expect("one solve");
     let t = &log.solver;
     let eliminated = log.eliminated.iter().filter(|e| **e).count();

@@ -547,7 +547,11 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                     .collect();
                 Some(crate::concepts::Concept::new(
                     crate::concepts::ConceptKind::ChamMater,
-                    ConceptData::MaterialField(crate::concepts::model::MaterialField { mesh: vmesh.clone(), cells }),
+                    ConceptData::MaterialField(crate::concepts::model::MaterialField {
+                        mesh: vmesh.clone(),
+                        cells,
+                        varc: Vec::new(),
+                    }),
                 ))
             }
             _ => None,

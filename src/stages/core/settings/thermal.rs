@@ -204,6 +204,9 @@ pub(super) fn read(a: &Args, command: Command, model: ConceptRef) -> Result<Sett
         }
     }
     let chmat = a.req_concept("CHAM_MATER")?;
+    if super::has_varc(&chmat) {
+        return Err(a.err("CHAM_MATER", "AFFE_VARC in a thermal computation is not supported yet"));
+    }
     let mut excit = Vec::new();
     for occ in a.facts("EXCIT") {
         let _ = occ.text("TYPE_CHARGE"); // FIXE_CSTE, its only value
