@@ -682,19 +682,7 @@ pub fn gauss_fields(
     coords: &[[f64; 3]],
     u: &[f64],
 ) -> Result<GaussFields, ElementError> {
-    mat.check(m)?;
-    let rule = rigi_rule_of(m, t);
-    let gg = gauss_geometry(m, t, coords, &rule)?;
-    let nno = t.nnodes();
-    assert_eq!(u.len(), nno * m.dim());
-    let mut out = GaussFields { points: vec![], eps: vec![], sig: vec![] };
-    for g in &gg {
-        let e = strain_at(m, mat, g, nno, u);
-        out.points.push(g.x);
-        out.sig.push(stress_from_strain(m, mat, &e));
-        out.eps.push(e);
-    }
-    Ok(out)
+    gauss_fields_thermal(m, mat, t, coords, u, &vec![0.0; t.nnodes()])
 }
 
 /// θ at a point from its values at the nodes.

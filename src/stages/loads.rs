@@ -158,19 +158,7 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
                 *index.get(n.as_str()).ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {name}")))?,
             );
         }
-        for g in occ.texts("GROUP_NO") {
-            let m = mesh
-                .node_groups
-                .get(&g)
-                .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {name}")))?;
-            if m.len() != 1 {
-                return Err(occ.err(
-                    "GROUP_NO",
-                    format!("group '{g}' holds {} nodes; LIAISON_DDL needs one node per group", m.len()),
-                ));
-            }
-            nodes.push(m[0]);
-        }
+        nodes.extend(single_nodes(&mesh, occ, &name)?);
         let ddl = occ.texts("DDL");
         let coef = occ.reals("COEF_MULT");
         if nodes.len() != ddl.len() || ddl.len() != coef.len() {
@@ -185,6 +173,25 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
         items.push(LoadItem::Relation { terms, value });
     }
     Ok(Some(ConceptData::Load(Load { model: mo, items, functional })))
+}
+
+/// The node of each group of GROUP_NO, in order (LIAISON_DDL: one node per group).
+fn single_nodes(mesh: &Mesh, occ: &Args, name: &str) -> Result<Vec<usize>> {
+    let mut nodes = Vec::new();
+    for g in occ.texts("GROUP_NO") {
+        let m = mesh
+            .node_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {name}")))?;
+        if m.len() != 1 {
+            return Err(occ.err(
+                "GROUP_NO",
+                format!("group '{g}' holds {} nodes; LIAISON_DDL needs one node per group", m.len()),
+            ));
+        }
+        nodes.push(m[0]);
+    }
+    Ok(nodes)
 }
 
 fn mo_dim(mo: &ConceptRef) -> Result<usize> {

@@ -185,3 +185,40 @@ pub fn analytic_errors(resu: &str) -> Vec<f64> {
         })
         .collect()
 }
+
+/// `aster study` of `export` (under comm/) on the generated mesh `mesh` with the knobs `--set` gives,
+/// into `out`: the `check:ERR_L2` of every variant keyed by the values of `keys` joined by spaces.
+pub fn study_err_l2(
+    out: &Path,
+    export: &str,
+    mesh: &str,
+    knobs: &[&str],
+    keys: &[&str],
+) -> std::collections::BTreeMap<String, f64> {
+    let mut cmd = aster();
+    cmd.args(["study", root().join(format!("comm/{export}")).to_str().unwrap()]).args([
+        "--mesh",
+        mesh,
+        "--quiet",
+        "--error",
+        "check:ERR_L2",
+    ]);
+    for k in knobs {
+        cmd.args(["--set", k]);
+    }
+    let o = cmd.arg("--out").arg(out).output().unwrap();
+    let (stdout, stderr) = text(&o);
+    assert!(o.status.success(), "{stdout}\n{stderr}");
+    let csv = std::fs::read_to_string(out.join("study.csv")).unwrap();
+    let mut lines = csv.lines();
+    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| head.iter().position(|h| *h == name).unwrap_or_else(|| panic!("{name}: {csv}"));
+    let mut errs = std::collections::BTreeMap::new();
+    for l in lines {
+        let r: Vec<&str> = l.split(',').collect();
+        let key = keys.iter().map(|k| r[col(k)]).collect::<Vec<_>>().join(" ");
+        let e: f64 = r[col("err_check:ERR_L2")].parse().unwrap_or_else(|_| panic!("{l}"));
+        errs.insert(key, e);
+    }
+    errs
+}

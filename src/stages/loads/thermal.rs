@@ -157,20 +157,7 @@ fn group_nodes(mesh: &Mesh, occ: &Args, name: &str, kw_ma: &str, kw_no: &str) ->
 /// LIAISON_DDL: Σ COEF_MULT·T(node) = COEF_IMPO, one node per GROUP_NO (DDL, TEMP for each, may be left out).
 fn liaison_ddl(mesh: &Mesh, occ: &Args, name: &str) -> Result<LoadItem> {
     only_temp(occ, "DDL")?;
-    let mut nodes = Vec::new();
-    for g in occ.texts("GROUP_NO") {
-        let m = mesh
-            .node_groups
-            .get(&g)
-            .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {name}")))?;
-        if m.len() != 1 {
-            return Err(occ.err(
-                "GROUP_NO",
-                format!("group '{g}' holds {} nodes; LIAISON_DDL needs one node per group", m.len()),
-            ));
-        }
-        nodes.push(m[0]);
-    }
+    let nodes = super::single_nodes(mesh, occ, name)?;
     // Without DDL, every term is on TEMP.
     let mut ddl = occ.texts("DDL");
     if ddl.is_empty() {

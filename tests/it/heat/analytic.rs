@@ -25,31 +25,8 @@ fn plain(scene: &str) -> (usize, usize, usize) {
 /// `keys` joined by spaces.
 fn study(scene: &str, tag: &str, knobs: &[&str], keys: &[&str]) -> BTreeMap<String, f64> {
     let out = scratch!(tag);
-    let mut cmd = aster();
-    cmd.args(["study", root().join(format!("comm/{scene}.export")).to_str().unwrap()]).args([
-        "--mesh",
-        "20=box --cell QUAD8 --n {N},1 --size 1,0.05",
-        "--quiet",
-        "--error",
-        "check:ERR_L2",
-    ]);
-    for k in knobs {
-        cmd.args(["--set", k]);
-    }
-    let o = cmd.arg("--out").arg(&out).output().unwrap();
-    let (stdout, stderr) = text(&o);
-    assert!(o.status.success(), "{stdout}\n{stderr}");
-    let csv = std::fs::read_to_string(out.join("study.csv")).unwrap();
-    let mut lines = csv.lines();
-    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| head.iter().position(|h| *h == name).unwrap_or_else(|| panic!("{name}: {csv}"));
-    let mut errs = BTreeMap::new();
-    for l in lines {
-        let r: Vec<&str> = l.split(',').collect();
-        let key = keys.iter().map(|k| r[col(k)]).collect::<Vec<_>>().join(" ");
-        let e: f64 = r[col("err_check:ERR_L2")].parse().unwrap_or_else(|_| panic!("{l}"));
-        errs.insert(key, e);
-    }
+    let errs =
+        study_err_l2(&out, &format!("{scene}.export"), "20=box --cell QUAD8 --n {N},1 --size 1,0.05", knobs, keys);
     let _ = std::fs::remove_dir_all(&out);
     errs
 }

@@ -25,33 +25,13 @@ fn the_scene_passes_every_check_at_its_default_knobs() {
 
 /// ERR_L2 of every variant of a study of the scene, keyed by "N NSTEP THETA START".
 fn study(tag: &str, knobs: &[&str]) -> BTreeMap<String, f64> {
-    let out = scratch!(tag);
-    let mut cmd = aster();
-    cmd.args(["study", root().join("comm/terzaghi_study.export").to_str().unwrap()]).args([
-        "--mesh",
+    study_err_l2(
+        &scratch!(tag),
+        "terzaghi_study.export",
         "20=box --cell QUAD8 --n 1,{N} --size 1,10",
-        "--quiet",
-        "--error",
-        "check:ERR_L2",
-    ]);
-    for k in knobs {
-        cmd.args(["--set", k]);
-    }
-    let o = cmd.arg("--out").arg(&out).output().unwrap();
-    let (stdout, stderr) = text(&o);
-    assert!(o.status.success(), "{stdout}\n{stderr}");
-    let csv = std::fs::read_to_string(out.join("study.csv")).unwrap();
-    let mut lines = csv.lines();
-    let head: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| head.iter().position(|h| *h == name).unwrap_or_else(|| panic!("{name}: {csv}"));
-    let mut errs = BTreeMap::new();
-    for l in lines {
-        let r: Vec<&str> = l.split(',').collect();
-        let key = ["N", "NSTEP", "THETA", "START"].map(|k| r[col(k)]).join(" ");
-        let e: f64 = r[col("err_check:ERR_L2")].parse().unwrap_or_else(|_| panic!("{l}"));
-        errs.insert(key, e);
-    }
-    errs
+        knobs,
+        &["N", "NSTEP", "THETA", "START"],
+    )
 }
 
 #[test]
