@@ -43,6 +43,35 @@ pub struct ThermalStrain {
     pub cells: Vec<Option<(f64, f64, usize)>>,
 }
 
+impl ThermalStrain {
+    /// `α (T − T_ref)` at the nodes of every cell of `bulk` with a thermal strain at `t` (None elsewhere).
+    pub fn theta(&self, mesh: &Mesh, bulk: &[usize], t: f64) -> Result<Vec<Option<Vec<f64>>>, Error> {
+        let mut out = vec![None; mesh.cells.len()];
+        let mut temps: Vec<Option<Vec<f64>>> = vec![None; self.sources.len()];
+        for &c in bulk {
+            let Some((alpha, tref, k)) = self.cells[c] else { continue };
+            if temps[k].is_none() {
+                temps[k] = Some((self.sources[k])(t)?);
+            }
+            let tk = temps[k].as_ref().expect("just computed");
+            let mut v = Vec::with_capacity(mesh.cells[c].len());
+            for &n in &mesh.cells[c] {
+                let tn = tk.get(n).copied().unwrap_or(f64::NAN);
+                if !tn.is_finite() {
+                    return Err(Error::runtime(format!(
+                        "AFFE_VARC: no temperature at node {} of cell {} at INST={t}",
+                        mesh.node_names[n], mesh.cell_names[c]
+                    ))
+                    .at_keyword("CHAM_MATER"));
+                }
+                v.push(alpha * (tn - tref));
+            }
+            out[c] = Some(v);
+        }
+        Ok(out)
+    }
+}
+
 impl Elastic {
     /// The element stiffnesses of the bulk cells, computed once (`linear`: MECA_STATIQUE; `sief`: store
     /// SIEF_ELGA).
@@ -89,31 +118,10 @@ impl Elastic {
 
     /// `α (T − T_ref)` at the nodes of every bulk cell with a thermal strain at `t` (None without one).
     fn theta(&self, t: f64) -> Result<Vec<Option<Vec<f64>>>, Error> {
-        let mesh = &*self.mesh;
-        let mut out = vec![None; mesh.cells.len()];
-        let Some(th) = &self.thermal else { return Ok(out) };
-        let mut temps: Vec<Option<Vec<f64>>> = vec![None; th.sources.len()];
-        for &c in &self.bulk {
-            let Some((alpha, tref, k)) = th.cells[c] else { continue };
-            if temps[k].is_none() {
-                temps[k] = Some((th.sources[k])(t)?);
-            }
-            let tk = temps[k].as_ref().expect("just computed");
-            let mut v = Vec::with_capacity(mesh.cells[c].len());
-            for &n in &mesh.cells[c] {
-                let tn = tk.get(n).copied().unwrap_or(f64::NAN);
-                if !tn.is_finite() {
-                    return Err(Error::runtime(format!(
-                        "AFFE_VARC: no temperature at node {} of cell {} at INST={t}",
-                        mesh.node_names[n], mesh.cell_names[c]
-                    ))
-                    .at_keyword("CHAM_MATER"));
-                }
-                v.push(alpha * (tn - tref));
-            }
-            out[c] = Some(v);
+        match &self.thermal {
+            Some(th) => th.theta(&self.mesh, &self.bulk, t),
+            None => Ok(vec![None; self.mesh.cells.len()]),
         }
-        Ok(out)
     }
 
     /// The unknowns of a skin cell carrying a surface load.

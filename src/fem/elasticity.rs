@@ -828,7 +828,19 @@ pub fn node_fields(
     coords: &[[f64; 3]],
     u: &[f64],
 ) -> Result<NodeFields, ElementError> {
-    let g = gauss_fields(m, mat, t, coords, u)?;
+    node_fields_thermal(m, mat, t, coords, u, &vec![0.0; t.nnodes()])
+}
+
+/// [`node_fields`] with a thermal strain `θ` at the nodes ([`gauss_fields_thermal`]).
+pub fn node_fields_thermal(
+    m: Modelisation,
+    mat: &IsoElastic,
+    t: CellType,
+    coords: &[[f64; 3]],
+    u: &[f64],
+    theta: &[f64],
+) -> Result<NodeFields, ElementError> {
+    let g = gauss_fields_thermal(m, mat, t, coords, u, theta)?;
     Ok((gauss_to_nodes(m, t, &g.eps, m.nsig()), gauss_to_nodes(m, t, &g.sig, m.nsig())))
 }
 

@@ -176,7 +176,7 @@ pub fn elastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Elastic> {
 /// The thermal strain of the material field's AFFE_VARC (NOM_VARC='TEMP') on the problem's bulk cells:
 /// α from ELAS's ALPHA (none: no thermal strain), T_ref from VALE_REF, the temperature from the EVOL_THER
 /// (interpolated linearly in time between its instants, PROL_GAUCHE / PROL_DROITE beyond) or the field.
-fn thermal_strain(chmat: &ConceptRef, p: &Problem) -> Result<Option<ThermalStrain>> {
+pub fn thermal_strain(chmat: &ConceptRef, p: &Problem) -> Result<Option<ThermalStrain>> {
     let data = chmat.data();
     let ConceptData::MaterialField(MaterialField { varc, cells: mats, .. }) = &*data else { return Ok(None) };
     if varc.is_empty() {

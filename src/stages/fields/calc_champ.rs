@@ -249,12 +249,18 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         return Ok(Some(ConceptData::Result(data)));
     }
     let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
+    // AFFE_VARC's thermal strain: the stresses are D (ε − ε_th), at each step's instant.
+    let thermal = crate::stages::core::problem::thermal_strain(&chmat, &p).map_err(|e| e.at(a.span))?;
     let mesh = &p.mesh;
     let md = p.modelisation;
     for step in steps.iter_mut() {
         if !orders.is_empty() && !orders.contains(&step.nume_ordre) {
             continue;
         }
+        let thetas = match &thermal {
+            Some(th) => th.theta(mesh, &p.bulk, step.inst).map_err(|e| e.at(a.span))?,
+            None => vec![None; mesh.cells.len()],
+        };
         let Some(Field::Node { values: depl, .. }) = step.fields.get("DEPL") else {
             return Err(a.err("RESULTAT", format!("no DEPL at order {}", step.nume_ordre)));
         };
@@ -266,14 +272,19 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 mesh.cells[c].iter().flat_map(|&n| (0..md.dim()).map(move |k| depl[n * md.dim() + k])).collect();
             let mat = &p.materials[c].as_ref().unwrap().0;
             let xs = coords_of(mesh, c);
-            let (eps, sig) = elasticity::node_fields(md, mat, mesh.cell_types[c], &xs, &ue)
+            let zero = vec![0.0; mesh.cells[c].len()];
+            let theta = thetas[c].as_deref().unwrap_or(&zero);
+            let (eps, sig) = elasticity::node_fields_thermal(md, mat, mesh.cell_types[c], &xs, &ue, theta)
                 .map_err(|e| Error::runtime(e.to_string()))?;
             sig_elno[c] = Some(sig.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
             eps_elno[c] = Some(eps.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
-            let g = elasticity::gauss_fields(md, mat, mesh.cell_types[c], &xs, &ue)
+            let g = elasticity::gauss_fields_thermal(md, mat, mesh.cell_types[c], &xs, &ue, theta)
                 .map_err(|e| Error::runtime(e.to_string()))?;
             sig_elga[c] = Some(g.sig.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
             eps_elga[c] = Some(g.eps.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
+        }
+        if thermal.is_some() && wanted.iter().any(|o| o == "SIRO_ELEM") {
+            return Err(a.err("CONTRAINTE", "SIRO_ELEM with AFFE_VARC's thermal strain is not supported yet"));
         }
         let siro = match wanted.iter().any(|o| o == "SIRO_ELEM") {
             true => Some(siro_elem(&p, &model, depl, &only).map_err(|e| e.at(a.span))?),

@@ -326,6 +326,12 @@ fn ener_rela(a: &Args, set: &Setting, groups: &[String], cells_of: &[Vec<usize>]
         })
         .collect::<Result<_>>()?;
     let mats = match &*chmat.data() {
+        ConceptData::MaterialField(MaterialField { varc, .. }) if !varc.is_empty() => {
+            return Err(a.err(
+                "CHAM_MATER",
+                format!("{}: the energy norm with AFFE_VARC's thermal strain is not supported yet", chmat.label()),
+            ))
+        }
         ConceptData::MaterialField(MaterialField { cells, .. }) => cells.clone(),
         _ => return Err(a.err("CHAM_MATER", format!("{} is not a material field", chmat.label()))),
     };
