@@ -37,12 +37,12 @@ from med.medfile import MEDCHAR, MEDFLOAT, MEDINT, MEDfileClose, MEDfileOpen
 from med.medmesh import (MEDmeshElementConnectivityRd, MEDmeshEntityFamilyNumberRd,
                          MEDmeshInfo, MEDmeshnEntity, MEDmeshNodeCoordinateRd, MEDnMesh)
 
-TYPES = [("PO1", MED_POINT1, 1), ("SE2", MED_SEG2, 2), ("SE3", MED_SEG3, 3),
-         ("TR3", MED_TRIA3, 3), ("QU4", MED_QUAD4, 4), ("TR6", MED_TRIA6, 6),
+TYPES = [("PO1", MED_POINT1, 1), ("SE2", MED_SEG2, 2), ("SE3", MED_SEG3, 3), ("SE4", MED_SEG4, 4),
+         ("TR3", MED_TRIA3, 3), ("QU4", MED_QUAD4, 4), ("TR6", MED_TRIA6, 6), ("TR7", MED_TRIA7, 7),
          ("QU8", MED_QUAD8, 8), ("QU9", MED_QUAD9, 9), ("TE4", MED_TETRA4, 4),
          ("PY5", MED_PYRA5, 5), ("PE6", MED_PENTA6, 6), ("HE8", MED_HEXA8, 8),
          ("T10", MED_TETRA10, 10), ("P13", MED_PYRA13, 13), ("P15", MED_PENTA15, 15),
-         ("H20", MED_HEXA20, 20), ("H27", MED_HEXA27, 27)]
+         ("P18", MED_PENTA18, 18), ("H20", MED_HEXA20, 20), ("H27", MED_HEXA27, 27)]
 
 
 def groups_of_families(fid, mesh):

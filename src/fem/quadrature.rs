@@ -86,11 +86,11 @@ impl RefDomain {
         use CellType::*;
         match t {
             Poi1 => RefDomain::Point,
-            Seg2 | Seg3 => RefDomain::Segment,
-            Tria3 | Tria6 => RefDomain::Triangle,
+            Seg2 | Seg3 | Seg4 => RefDomain::Segment,
+            Tria3 | Tria6 | Tria7 => RefDomain::Triangle,
             Quad4 | Quad8 | Quad9 => RefDomain::Quadrangle,
             Tetra4 | Tetra10 => RefDomain::Tetrahedron,
-            Penta6 | Penta15 => RefDomain::Prism,
+            Penta6 | Penta15 | Penta18 => RefDomain::Prism,
             Pyram5 | Pyram13 => RefDomain::Pyramid,
             Hexa8 | Hexa20 | Hexa27 => RefDomain::Hexahedron,
         }
@@ -659,14 +659,14 @@ pub fn aster_families(t: CellType) -> &'static [&'static str] {
     use CellType::*;
     match t {
         Poi1 => &["NOEU", "NOEU_S", "FPG1"],
-        Seg2 | Seg3 => &["NOEU", "NOEU_S", "FPG1", "FPG2", "FPG3", "FPG4", "FPG5", "FPG6", "FPG7", "FPG8"],
+        Seg2 | Seg3 | Seg4 => &["NOEU", "NOEU_S", "FPG1", "FPG2", "FPG3", "FPG4", "FPG5", "FPG6", "FPG7", "FPG8"],
         Tria3 => &["NOEU", "NOEU_S", "FPG1", "FPG3", "FPG4", "FPG6", "FPG7", "FPG12", "COT3", "FPG13", "FPG16"],
-        Tria6 => &["NOEU", "NOEU_S", "FPG1", "FPG3", "FPG4", "FPG6", "FPG7", "FPG12", "FPG13", "FPG16"],
+        Tria6 | Tria7 => &["NOEU", "NOEU_S", "FPG1", "FPG3", "FPG4", "FPG6", "FPG7", "FPG12", "FPG13", "FPG16"],
         Quad4 | Quad9 => &["NOEU", "NOEU_S", "FPG1", "FPG4", "FPG9", "FPG16", "FPG25", "FPG36", "FPG49", "FPG64"],
         Quad8 => &["NOEU", "NOEU_S", "FPG1", "FPG4", "FPG9"],
         Tetra4 => &["NOEU", "NOEU_S", "FPG1", "FPG4", "FPG5", "FPG15", "FPG24"],
         Tetra10 => &["NOEU", "NOEU_S", "FPG1", "FPG4", "FPG5", "FPG15"],
-        Penta6 | Penta15 => &["NOEU", "NOEU_S", "FPG1", "FPG6", "FPG6B", "FPG8", "FPG21"],
+        Penta6 | Penta15 | Penta18 => &["NOEU", "NOEU_S", "FPG1", "FPG6", "FPG6B", "FPG8", "FPG21"],
         Pyram5 | Pyram13 => &["NOEU", "NOEU_S", "FPG1", "FPG1B", "FPG5", "FPG6", "FPG10"],
         Hexa8 | Hexa27 => &["NOEU", "NOEU_S", "FPG1", "FPG8", "FPG27", "FPG64", "FPG125", "FPG216", "FPG343", "FPG512"],
         Hexa20 => &["NOEU", "NOEU_S", "FPG1", "FPG8", "FPG27", "FPG64"],
@@ -846,6 +846,7 @@ pub fn default_family(t: CellType, fam: Family) -> &'static str {
                 Poi1 => "FPG1",
                 Seg2 => "FPG2",
                 Seg3 => "FPG4",
+                Seg4 => "FPG4",
                 Tria3 => {
                     if rigi {
                         "FPG1"
@@ -860,6 +861,7 @@ pub fn default_family(t: CellType, fam: Family) -> &'static str {
                         "FPG6"
                     }
                 }
+                Tria7 => "FPG6",
                 Quad4 => "FPG4",
                 Quad8 | Quad9 => "FPG9",
                 Tetra4 => {
@@ -877,7 +879,7 @@ pub fn default_family(t: CellType, fam: Family) -> &'static str {
                     }
                 }
                 Penta6 => "FPG6",
-                Penta15 => "FPG21",
+                Penta15 | Penta18 => "FPG21",
                 Pyram5 => "FPG5",
                 Pyram13 => "FPG10",
                 Hexa8 => "FPG8",

@@ -146,15 +146,18 @@ pub fn node_coords(t: CellType) -> &'static [[f64; 3]] {
         Poi1 => &POI1_NODES,
         Seg2 => &SEG3_NODES[..2],
         Seg3 => &SEG3_NODES,
-        Tria3 => &TRIA6_NODES[..3],
-        Tria6 => &TRIA6_NODES,
+        Seg4 => &SEG4_NODES,
+        Tria3 => &TRIA7_NODES[..3],
+        Tria6 => &TRIA7_NODES[..6],
+        Tria7 => &TRIA7_NODES,
         Quad4 => &QUAD9_NODES[..4],
         Quad8 => &QUAD9_NODES[..8],
         Quad9 => &QUAD9_NODES,
         Tetra4 => &TETRA10_NODES[..4],
         Tetra10 => &TETRA10_NODES,
-        Penta6 => &PENTA15_NODES[..6],
-        Penta15 => &PENTA15_NODES,
+        Penta6 => &PENTA18_NODES[..6],
+        Penta15 => &PENTA18_NODES[..15],
+        Penta18 => &PENTA18_NODES,
         Pyram5 => &PYRAM13_NODES[..5],
         Pyram13 => &PYRAM13_NODES,
         Hexa8 => &HEXA27_NODES[..8],
@@ -167,8 +170,17 @@ const POI1_NODES: [[f64; 3]; 1] = [[0.0, 0.0, 0.0]];
 
 const SEG3_NODES: [[f64; 3]; 3] = [[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0]];
 
-const TRIA6_NODES: [[f64; 3]; 6] =
-    [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.0, 0.0], [0.5, 0.5, 0.0], [0.0, 0.5, 0.0]];
+const SEG4_NODES: [[f64; 3]; 4] = [[-1.0, 0.0, 0.0], [1.0, 0.0, 0.0], [-1.0 / 3.0, 0.0, 0.0], [1.0 / 3.0, 0.0, 0.0]];
+
+const TRIA7_NODES: [[f64; 3]; 7] = [
+    [0.0, 0.0, 0.0],
+    [1.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0],
+    [0.5, 0.0, 0.0],
+    [0.5, 0.5, 0.0],
+    [0.0, 0.5, 0.0],
+    [1.0 / 3.0, 1.0 / 3.0, 0.0],
+];
 
 const QUAD9_NODES: [[f64; 3]; 9] = [
     [-1.0, -1.0, 0.0],
@@ -195,7 +207,7 @@ const TETRA10_NODES: [[f64; 3]; 10] = [
     [0.5, 0.0, 0.0],
 ];
 
-const PENTA15_NODES: [[f64; 3]; 15] = [
+const PENTA18_NODES: [[f64; 3]; 18] = [
     [-1.0, 1.0, 0.0],
     [-1.0, 0.0, 1.0],
     [-1.0, 0.0, 0.0],
@@ -211,6 +223,9 @@ const PENTA15_NODES: [[f64; 3]; 15] = [
     [1.0, 0.5, 0.5],
     [1.0, 0.0, 0.5],
     [1.0, 0.5, 0.0],
+    [0.0, 0.5, 0.5],
+    [0.0, 0.0, 0.5],
+    [0.0, 0.5, 0.0],
 ];
 
 const PYRAM13_NODES: [[f64; 3]; 13] = [
@@ -265,11 +280,11 @@ pub fn ref_measure(t: CellType) -> f64 {
     use CellType::*;
     match t {
         Poi1 => 1.0,
-        Seg2 | Seg3 => 2.0,
-        Tria3 | Tria6 => 0.5,
+        Seg2 | Seg3 | Seg4 => 2.0,
+        Tria3 | Tria6 | Tria7 => 0.5,
         Quad4 | Quad8 | Quad9 => 4.0,
         Tetra4 | Tetra10 => 1.0 / 6.0,
-        Penta6 | Penta15 => 1.0,
+        Penta6 | Penta15 | Penta18 => 1.0,
         Pyram5 | Pyram13 => 2.0 / 3.0,
         Hexa8 | Hexa20 | Hexa27 => 8.0,
     }
@@ -280,9 +295,9 @@ pub fn ref_measure(t: CellType) -> f64 {
 pub fn ref_centroid(t: CellType) -> [f64; 3] {
     use CellType::*;
     match t {
-        Tria3 | Tria6 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
+        Tria3 | Tria6 | Tria7 => [1.0 / 3.0, 1.0 / 3.0, 0.0],
         Tetra4 | Tetra10 => [0.25, 0.25, 0.25],
-        Penta6 | Penta15 => [0.0, 1.0 / 3.0, 1.0 / 3.0],
+        Penta6 | Penta15 | Penta18 => [0.0, 1.0 / 3.0, 1.0 / 3.0],
         Pyram5 | Pyram13 => [0.0, 0.0, 0.25],
         _ => [0.0, 0.0, 0.0],
     }
@@ -297,11 +312,11 @@ pub fn outside_distance(t: CellType, xi: &[f64; 3]) -> f64 {
     let viol = |a: f64| a.max(0.0);
     match t {
         Poi1 => 0.0,
-        Seg2 | Seg3 => viol(x.abs() - 1.0),
-        Tria3 | Tria6 => viol(-x).max(viol(-y)).max(viol(x + y - 1.0)),
+        Seg2 | Seg3 | Seg4 => viol(x.abs() - 1.0),
+        Tria3 | Tria6 | Tria7 => viol(-x).max(viol(-y)).max(viol(x + y - 1.0)),
         Quad4 | Quad8 | Quad9 => viol(x.abs() - 1.0).max(viol(y.abs() - 1.0)),
         Tetra4 | Tetra10 => viol(-x).max(viol(-y)).max(viol(-z)).max(viol(x + y + z - 1.0)),
-        Penta6 | Penta15 => viol(x.abs() - 1.0).max(viol(-y)).max(viol(-z)).max(viol(y + z - 1.0)),
+        Penta6 | Penta15 | Penta18 => viol(x.abs() - 1.0).max(viol(-y)).max(viol(-z)).max(viol(y + z - 1.0)),
         Pyram5 | Pyram13 => viol(-z).max(viol(z - 1.0)).max(viol(x.abs() + y.abs() + z - 1.0)),
         Hexa8 | Hexa20 | Hexa27 => viol(x.abs() - 1.0).max(viol(y.abs() - 1.0)).max(viol(z.abs() - 1.0)),
     }
@@ -343,9 +358,35 @@ fn eval(t: CellType, p: [D; 3], out: &mut [D]) {
             out[1] = x * (x + 1.0) * 0.5;
             out[2] = (1.0 - x) * (1.0 + x);
         }
+        Seg4 => {
+            // Cubic Lagrange on -1, 1, -1/3, 1/3.
+            let nodes = [-1.0, 1.0, -1.0 / 3.0, 1.0 / 3.0];
+            for (i, &a) in nodes.iter().enumerate() {
+                let mut v = D::c(1.0);
+                for (j, &b) in nodes.iter().enumerate() {
+                    if j != i {
+                        v = v * (x - b) * (1.0 / (a - b));
+                    }
+                }
+                out[i] = v;
+            }
+        }
         Tria3 | Tria6 => {
             let l = [1.0 - x - y, x, y];
             simplex(&l, &[(0, 1), (1, 2), (2, 0)], t == Tria6, out);
+        }
+        Tria7 => {
+            // P2 plus the cubic bubble 27 λ1 λ2 λ3, which vanishes on every other node.
+            let l = [1.0 - x - y, x, y];
+            simplex(&l, &[(0, 1), (1, 2), (2, 0)], true, out);
+            let b = l[0] * l[1] * l[2];
+            for o in out.iter_mut().take(3) {
+                *o = *o + b * 3.0;
+            }
+            for o in out.iter_mut().take(6).skip(3) {
+                *o = *o - b * 12.0;
+            }
+            out[6] = b * 27.0;
         }
         Tetra4 | Tetra10 => {
             // Code_Aster's vertex order: (0,1,0), (0,0,1), (0,0,0), (1,0,0).
@@ -375,6 +416,18 @@ fn eval(t: CellType, p: [D; 3], out: &mut [D]) {
                 out[6 + k] = 2.0 * l[i] * l[j] * (1.0 - x);
                 out[12 + k] = 2.0 * l[i] * l[j] * (1.0 + x);
                 out[9 + k] = l[k] * (1.0 - x) * (1.0 + x);
+            }
+        }
+        Penta18 => {
+            // The quadratic triangle (in y, z) times the quadratic segment (in x).
+            let l = [y, z, 1.0 - y - z];
+            let mut tri = [D::c(0.0); 6];
+            simplex(&l, &[(0, 1), (1, 2), (2, 0)], true, &mut tri);
+            // Node k: its triangle node and its level on the axis.
+            const TRI: [usize; 18] = [0, 1, 2, 0, 1, 2, 3, 4, 5, 0, 1, 2, 3, 4, 5, 3, 4, 5];
+            let nodes = node_coords(t);
+            for (k, o) in out.iter_mut().enumerate().take(18) {
+                *o = tri[TRI[k]] * lag3(nodes[k][0], x);
             }
         }
         Pyram5 | Pyram13 => pyramid(t == Pyram13, p, out),
@@ -838,18 +891,18 @@ mod tests {
         loop {
             let p = match t {
                 Poi1 => [0.0; 3],
-                Seg2 | Seg3 => [s(rng), 0.0, 0.0],
+                Seg2 | Seg3 | Seg4 => [s(rng), 0.0, 0.0],
                 Quad4 | Quad8 | Quad9 => [s(rng), s(rng), 0.0],
                 Hexa8 | Hexa20 | Hexa27 => [s(rng), s(rng), s(rng)],
-                Tria3 | Tria6 => [rng.next(), rng.next(), 0.0],
+                Tria3 | Tria6 | Tria7 => [rng.next(), rng.next(), 0.0],
                 Tetra4 | Tetra10 => [rng.next(), rng.next(), rng.next()],
-                Penta6 | Penta15 => [s(rng), rng.next(), rng.next()],
+                Penta6 | Penta15 | Penta18 => [s(rng), rng.next(), rng.next()],
                 Pyram5 | Pyram13 => [s(rng), s(rng), rng.next()],
             };
             let inner = match t {
-                Tria3 | Tria6 => p[0] > margin && p[1] > margin && p[0] + p[1] < 1.0 - margin,
+                Tria3 | Tria6 | Tria7 => p[0] > margin && p[1] > margin && p[0] + p[1] < 1.0 - margin,
                 Tetra4 | Tetra10 => p.iter().all(|&v| v > margin) && p[0] + p[1] + p[2] < 1.0 - margin,
-                Penta6 | Penta15 => p[1] > margin && p[2] > margin && p[1] + p[2] < 1.0 - margin,
+                Penta6 | Penta15 | Penta18 => p[1] > margin && p[2] > margin && p[1] + p[2] < 1.0 - margin,
                 Pyram5 | Pyram13 => p[2] > margin && p[0].abs() + p[1].abs() + p[2] < 1.0 - margin,
                 _ => true,
             };

@@ -4,7 +4,7 @@ use super::types::MedType;
 use super::{decode_name, h5err, ioerr, open_read, LNAME, SNAME};
 use crate::diag::Result;
 use crate::mesh::Mesh;
-use hdf5::types::FixedAscii;
+use hdf5::types::{FixedAscii, TypeDescriptor};
 use hdf5::{Dataset, Group, Location};
 use hdf5_metno as hdf5;
 use std::collections::BTreeMap;
@@ -67,11 +67,23 @@ pub(crate) fn read_f64s(path: &Path, ds: &Dataset) -> Result<Vec<f64>> {
 }
 
 /// Read a dataset of fixed-size names (array type `[i8; N]`, or a flat
-/// byte array of `count * N` bytes as some writers produce).
+/// byte array of `count * N` bytes as some writers produce, or — in MED 2.x
+/// files — a flat array of one-character strings).
 fn read_names<const N: usize>(path: &Path, ds: &Dataset) -> Result<Vec<String>> {
     let what = format!("reading names {}", ds.name());
-    let dsize = ds.dtype().map_err(|e| h5err(path, &what, e))?.size();
-    if dsize == N {
+    let dtype = ds.dtype().map_err(|e| h5err(path, &what, e))?;
+    let dsize = dtype.size();
+    let is_string =
+        matches!(dtype.to_descriptor(), Ok(TypeDescriptor::FixedAscii(_) | TypeDescriptor::FixedUnicode(_)));
+    if is_string && dsize == 1 {
+        // One character per element, a NUL read as an empty string.
+        let raw = ds.read_raw::<FixedAscii<1>>().map_err(|e| h5err(path, &what, e))?;
+        let bytes: Vec<i8> = raw.iter().map(|c| c.as_bytes().first().map_or(0, |&b| b as i8)).collect();
+        Ok(bytes.chunks(N).map(decode_name).collect())
+    } else if is_string && dsize == N {
+        let raw = ds.read_raw::<FixedAscii<N>>().map_err(|e| h5err(path, &what, e))?;
+        Ok(raw.iter().map(|n| n.as_str().trim_end().to_string()).collect())
+    } else if dsize == N {
         let raw = ds.read_raw::<[i8; N]>().map_err(|e| h5err(path, &what, e))?;
         Ok(raw.iter().map(|n| decode_name(n)).collect())
     } else if dsize == 1 {
@@ -83,8 +95,12 @@ fn read_names<const N: usize>(path: &Path, ds: &Dataset) -> Result<Vec<String>> 
 }
 
 /// The first computation-step group of a mesh (`-0000000000000000001-...`
-/// for meshes without steps).
+/// for meshes without steps); MED 2.x files have no step level, their `NOE` and `MAI` sit in the
+/// mesh's group itself.
 fn first_step(path: &Path, mesh: &Group, mesh_name: &str) -> Result<Group> {
+    if mesh.link_exists("NOE") || mesh.link_exists("MAI") {
+        return Ok(mesh.clone());
+    }
     let mut names = mesh.member_names().map_err(|e| h5err(path, &format!("listing mesh '{mesh_name}'"), e))?;
     names.sort();
     for n in names {
@@ -99,13 +115,16 @@ fn first_step(path: &Path, mesh: &Group, mesh_name: &str) -> Result<Group> {
 
 /// Family number -> group names, from `/FAS/<mesh>` (both `NOEUD` and
 /// `ELEME`, plus families stored directly under the mesh, e.g.
-/// `FAMILLE_ZERO`).
+/// `FAMILLE_ZERO`), or from `/ENS_MAA/<mesh>/FAS` in MED 2.x files.
 fn read_families(path: &Path, file: &hdf5::File, mesh: &str) -> Result<BTreeMap<i64, Vec<String>>> {
     let mut fams: BTreeMap<i64, Vec<String>> = BTreeMap::new();
-    let root = format!("FAS/{mesh}");
-    if !file.link_exists("FAS") || !file.group("FAS").is_ok_and(|g| g.link_exists(mesh)) {
+    let root = if file.link_exists("FAS") && file.group("FAS").is_ok_and(|g| g.link_exists(mesh)) {
+        format!("FAS/{mesh}")
+    } else if file.group(&format!("ENS_MAA/{mesh}")).is_ok_and(|g| g.link_exists("FAS")) {
+        format!("ENS_MAA/{mesh}/FAS")
+    } else {
         return Ok(fams);
-    }
+    };
     let fas = file.group(&root).map_err(|e| h5err(path, &root, e))?;
     let mut holders = vec![fas.clone()];
     for sub in ["NOEUD", "ELEME"] {
@@ -158,21 +177,29 @@ pub fn read_mesh(path: &Path, mesh_name: Option<&str>) -> Result<Mesh> {
     if typ != 0 {
         return Err(ioerr(path, format!("mesh '{name}' is a structured grid, not supported")));
     }
+    let step = first_step(path, &mgroup, &name)?;
+    let noe = step.group("NOE").map_err(|e| h5err(path, &format!("mesh '{name}' nodes"), e))?;
+    let coo =
+        open_ds(path, &noe, "COO")?.ok_or_else(|| ioerr(path, format!("mesh '{name}' has no node coordinates")))?;
+    // The space dimension: ESP (MED 3+); in MED 2.x files, which have only DIM (the mesh's own
+    // dimension), the number of coordinates per node (COO's size over its NBR nodes).
     let esp = match attr_int(path, &mgroup, "ESP")? {
         Some(e) => e,
-        None => attr_int(path, &mgroup, "DIM")?
-            .ok_or_else(|| ioerr(path, format!("mesh '{name}' has no ESP/DIM attribute")))?,
+        None => {
+            let dim = attr_int(path, &mgroup, "DIM")?
+                .ok_or_else(|| ioerr(path, format!("mesh '{name}' has no ESP/DIM attribute")))?;
+            match attr_int(path, &coo, "NBR")? {
+                Some(n) if n > 0 && coo.size() % n as usize == 0 => (coo.size() / n as usize) as i64,
+                _ => dim,
+            }
+        }
     };
     if !(1..=3).contains(&esp) {
         return Err(ioerr(path, format!("mesh '{name}': bad space dimension {esp}")));
     }
     let esp = esp as usize;
-    let step = first_step(path, &mgroup, &name)?;
 
     // Nodes.
-    let noe = step.group("NOE").map_err(|e| h5err(path, &format!("mesh '{name}' nodes"), e))?;
-    let coo =
-        open_ds(path, &noe, "COO")?.ok_or_else(|| ioerr(path, format!("mesh '{name}' has no node coordinates")))?;
     let flat = read_f64s(path, &coo)?;
     if flat.len() % esp != 0 {
         return Err(ioerr(path, format!("mesh '{name}': coordinate array size not a multiple of {esp}")));

@@ -36,6 +36,7 @@ const HEXA8: [usize; 8] = [0, 3, 2, 1, 4, 7, 6, 5];
 const TETRA10: [usize; 10] = [0, 2, 1, 3, 6, 5, 4, 7, 9, 8];
 const PYRAM13: [usize; 13] = [0, 3, 2, 1, 4, 8, 7, 6, 5, 9, 12, 11, 10];
 const PENTA15: [usize; 15] = [0, 2, 1, 3, 5, 4, 8, 7, 6, 12, 14, 13, 11, 10, 9];
+const PENTA18: [usize; 18] = [0, 2, 1, 3, 5, 4, 8, 7, 6, 12, 14, 13, 11, 10, 9, 17, 16, 15];
 const HEXA20: [usize; 20] = [0, 3, 2, 1, 4, 7, 6, 5, 11, 10, 9, 8, 16, 19, 18, 17, 15, 14, 13, 12];
 const HEXA27: [usize; 27] =
     [0, 3, 2, 1, 4, 7, 6, 5, 11, 10, 9, 8, 16, 19, 18, 17, 15, 14, 13, 12, 20, 24, 23, 22, 21, 25, 26];
@@ -45,13 +46,15 @@ const fn t(cell: CellType, med_name: &'static str, geo: i32, aster_from_med: Opt
 }
 
 /// All supported MED cell types, in increasing geometry code.
-pub const MED_TYPES: [MedType; 17] = [
+pub const MED_TYPES: [MedType; 20] = [
     t(CellType::Poi1, "PO1", 1, None),
     t(CellType::Seg2, "SE2", 102, None),
     t(CellType::Seg3, "SE3", 103, None),
+    t(CellType::Seg4, "SE4", 104, None),
     t(CellType::Tria3, "TR3", 203, None),
     t(CellType::Quad4, "QU4", 204, None),
     t(CellType::Tria6, "TR6", 206, None),
+    t(CellType::Tria7, "TR7", 207, None),
     t(CellType::Quad8, "QU8", 208, None),
     t(CellType::Quad9, "QU9", 209, None),
     t(CellType::Tetra4, "TE4", 304, Some(&TETRA4)),
@@ -61,6 +64,7 @@ pub const MED_TYPES: [MedType; 17] = [
     t(CellType::Tetra10, "T10", 310, Some(&TETRA10)),
     t(CellType::Pyram13, "P13", 313, Some(&PYRAM13)),
     t(CellType::Penta15, "P15", 315, Some(&PENTA15)),
+    t(CellType::Penta18, "P18", 318, Some(&PENTA18)),
     t(CellType::Hexa20, "H20", 320, Some(&HEXA20)),
     t(CellType::Hexa27, "H27", 327, Some(&HEXA27)),
 ];
@@ -186,11 +190,12 @@ mod tests {
     fn inverse_matches_code_aster_nuanom_tables() {
         // Code_Aster's `nuanom` (MED node k is Code_Aster node j), 1-based,
         // listed independently of `numnoa`.
-        let cases: [(CellType, &[usize]); 4] = [
+        let cases: [(CellType, &[usize]); 5] = [
             (CellType::Tetra10, &[1, 3, 2, 4, 7, 6, 5, 8, 10, 9]),
             (CellType::Pyram13, &[1, 4, 3, 2, 5, 9, 8, 7, 6, 10, 13, 12, 11]),
             (CellType::Penta15, &[1, 3, 2, 4, 6, 5, 9, 8, 7, 15, 14, 13, 10, 12, 11]),
             (CellType::Hexa20, &[1, 4, 3, 2, 5, 8, 7, 6, 12, 11, 10, 9, 20, 19, 18, 17, 13, 16, 15, 14]),
+            (CellType::Penta18, &[1, 3, 2, 4, 6, 5, 9, 8, 7, 15, 14, 13, 10, 12, 11, 18, 17, 16]),
         ];
         for (cell, nuanom) in cases {
             let inv = MedType::of(cell).med_from_aster();
@@ -204,8 +209,9 @@ mod tests {
         // MeshReader's asterTypeList: 3D linear types TETRA4, PENTA6, PYRAM5, HEXA8, quadratic after linear
         // per family; MED codes would put PYRAM5 (305) before PENTA6 (306) and HEXA8 (308) before TETRA10.
         use CellType::*;
-        let order = [Poi1, Seg2, Seg3, Tria3, Tria6, Quad4, Quad8, Quad9, Tetra4, Tetra10, Penta6, Penta15];
-        let order: Vec<CellType> = order.into_iter().chain([Pyram5, Pyram13, Hexa8, Hexa20, Hexa27]).collect();
+        let order = [Poi1, Seg2, Seg3, Seg4, Tria3, Tria6, Tria7, Quad4, Quad8, Quad9, Tetra4, Tetra10, Penta6];
+        let order: Vec<CellType> =
+            order.into_iter().chain([Penta15, Penta18, Pyram5, Pyram13, Hexa8, Hexa20, Hexa27]).collect();
         for (i, c) in order.iter().enumerate() {
             assert_eq!(MedType::rank(*c), i, "{c:?}");
         }

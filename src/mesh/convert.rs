@@ -32,11 +32,11 @@ pub fn edges(t: CellType) -> &'static [(usize, usize)] {
     use CellType::*;
     match t {
         Poi1 => &[],
-        Seg2 | Seg3 => &[(0, 1)],
-        Tria3 | Tria6 => &[(0, 1), (1, 2), (2, 0)],
+        Seg2 | Seg3 | Seg4 => &[(0, 1)],
+        Tria3 | Tria6 | Tria7 => &[(0, 1), (1, 2), (2, 0)],
         Quad4 | Quad8 | Quad9 => &[(0, 1), (1, 2), (2, 3), (3, 0)],
         Tetra4 | Tetra10 => &[(0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3)],
-        Penta6 | Penta15 => &[(0, 1), (1, 2), (0, 2), (0, 3), (1, 4), (2, 5), (3, 4), (4, 5), (3, 5)],
+        Penta6 | Penta15 | Penta18 => &[(0, 1), (1, 2), (0, 2), (0, 3), (1, 4), (2, 5), (3, 4), (4, 5), (3, 5)],
         Pyram5 | Pyram13 => &[(0, 1), (1, 2), (2, 3), (0, 3), (0, 4), (1, 4), (2, 4), (3, 4)],
         Hexa8 | Hexa20 | Hexa27 => {
             &[(0, 1), (1, 2), (2, 3), (0, 3), (0, 4), (1, 5), (2, 6), (3, 7), (4, 5), (5, 6), (6, 7), (4, 7)]
@@ -64,10 +64,10 @@ pub fn linear_of(t: CellType) -> Option<CellType> {
     use CellType::*;
     Some(match t {
         Seg3 => Seg2,
-        Tria6 => Tria3,
+        Tria6 | Tria7 => Tria3,
         Quad8 | Quad9 => Quad4,
         Tetra10 => Tetra4,
-        Penta15 => Penta6,
+        Penta15 | Penta18 => Penta6,
         Pyram13 => Pyram5,
         Hexa20 | Hexa27 => Hexa8,
         _ => return None,
@@ -84,11 +84,12 @@ fn visit_group(t: CellType) -> usize {
     use CellType::*;
     match t {
         Poi1 => 0,
+        Seg4 => 1,
         Seg3 => 2,
-        Quad9 => 3,
+        Tria7 | Quad9 => 3,
         Hexa27 => 4,
         Tria6 | Quad8 => 5,
-        Tetra10 | Penta15 | Pyram13 | Hexa20 => 6,
+        Tetra10 | Penta15 | Penta18 | Pyram13 | Hexa20 => 6,
         Seg2 => 7,
         Tria3 | Quad4 => 8,
         Tetra4 | Penta6 | Pyram5 | Hexa8 => 9,

@@ -16,8 +16,10 @@ pub enum CellType {
     Poi1,
     Seg2,
     Seg3,
+    Seg4,
     Tria3,
     Tria6,
+    Tria7,
     Quad4,
     Quad8,
     Quad9,
@@ -25,6 +27,7 @@ pub enum CellType {
     Tetra10,
     Penta6,
     Penta15,
+    Penta18,
     Pyram5,
     Pyram13,
     Hexa8,
@@ -33,12 +36,16 @@ pub enum CellType {
 }
 
 impl CellType {
-    pub const ALL: [CellType; 17] = [
+    /// Every type, in Code_Aster's order of cell types (`&CATA.TM`), which is the order its MED
+    /// reader numbers cells in.
+    pub const ALL: [CellType; 20] = [
         CellType::Poi1,
         CellType::Seg2,
         CellType::Seg3,
+        CellType::Seg4,
         CellType::Tria3,
         CellType::Tria6,
+        CellType::Tria7,
         CellType::Quad4,
         CellType::Quad8,
         CellType::Quad9,
@@ -46,6 +53,7 @@ impl CellType {
         CellType::Tetra10,
         CellType::Penta6,
         CellType::Penta15,
+        CellType::Penta18,
         CellType::Pyram5,
         CellType::Pyram13,
         CellType::Hexa8,
@@ -59,8 +67,10 @@ impl CellType {
             Poi1 => "POI1",
             Seg2 => "SEG2",
             Seg3 => "SEG3",
+            Seg4 => "SEG4",
             Tria3 => "TRIA3",
             Tria6 => "TRIA6",
+            Tria7 => "TRIA7",
             Quad4 => "QUAD4",
             Quad8 => "QUAD8",
             Quad9 => "QUAD9",
@@ -68,6 +78,7 @@ impl CellType {
             Tetra10 => "TETRA10",
             Penta6 => "PENTA6",
             Penta15 => "PENTA15",
+            Penta18 => "PENTA18",
             Pyram5 => "PYRAM5",
             Pyram13 => "PYRAM13",
             Hexa8 => "HEXA8",
@@ -86,8 +97,10 @@ impl CellType {
             Poi1 => 1,
             Seg2 => 2,
             Seg3 => 3,
+            Seg4 => 4,
             Tria3 => 3,
             Tria6 => 6,
+            Tria7 => 7,
             Quad4 => 4,
             Quad8 => 8,
             Quad9 => 9,
@@ -95,6 +108,7 @@ impl CellType {
             Tetra10 => 10,
             Penta6 => 6,
             Penta15 => 15,
+            Penta18 => 18,
             Pyram5 => 5,
             Pyram13 => 13,
             Hexa8 => 8,
@@ -108,8 +122,8 @@ impl CellType {
         use CellType::*;
         match self {
             Poi1 => 0,
-            Seg2 | Seg3 => 1,
-            Tria3 | Tria6 | Quad4 | Quad8 | Quad9 => 2,
+            Seg2 | Seg3 | Seg4 => 1,
+            Tria3 | Tria6 | Tria7 | Quad4 | Quad8 | Quad9 => 2,
             _ => 3,
         }
     }
@@ -119,11 +133,11 @@ impl CellType {
         use CellType::*;
         match self {
             Poi1 => 1,
-            Seg2 | Seg3 => 2,
-            Tria3 | Tria6 => 3,
+            Seg2 | Seg3 | Seg4 => 2,
+            Tria3 | Tria6 | Tria7 => 3,
             Quad4 | Quad8 | Quad9 => 4,
             Tetra4 | Tetra10 => 4,
-            Penta6 | Penta15 => 6,
+            Penta6 | Penta15 | Penta18 => 6,
             Pyram5 | Pyram13 => 5,
             Hexa8 | Hexa20 | Hexa27 => 8,
         }

@@ -70,7 +70,9 @@ impl Modelisation {
     /// Does the modelisation put a volume element on cells of this type?
     pub fn accepts_volume(self, t: CellType) -> bool {
         use CellType::*;
-        t.dim() == self.dim() && (!self.lumped || matches!(t, Tria3 | Quad4 | Tetra4 | Penta6 | Hexa8))
+        // Code_Aster's thermal catalogues have no TRIA7 or PENTA18 element.
+        let shape_ok = !matches!(t, Tria7 | Penta18);
+        shape_ok && t.dim() == self.dim() && (!self.lumped || matches!(t, Tria3 | Quad4 | Tetra4 | Penta6 | Hexa8))
     }
 
     /// Does the modelisation put a skin (boundary) element on cells of this type?
@@ -138,16 +140,16 @@ fn rigi_name(t: CellType) -> &'static str {
     use CellType::*;
     match t {
         Tria3 => "FPG3",
-        Tria6 | Penta6 => "FPG6",
+        Tria6 | Tria7 | Penta6 => "FPG6",
         Quad4 | Tetra4 => "FPG4",
         Quad8 | Quad9 => "FPG9",
         Tetra10 => "FPG15",
-        Penta15 => "FPG21",
+        Penta15 | Penta18 => "FPG21",
         Pyram5 => "FPG5",
         Pyram13 => "FPG10",
         Hexa8 => "FPG8",
         Hexa20 | Hexa27 => "FPG27",
-        Poi1 | Seg2 | Seg3 => "FPG1",
+        Poi1 | Seg2 | Seg3 | Seg4 => "FPG1",
     }
 }
 

@@ -38,12 +38,13 @@ pub fn edges(t: CellType) -> &'static [[usize; 3]] {
         [7, 4, 19],
     ];
     match t {
-        Poi1 => &[],
+        // A SEG4's inner nodes are not middles of its edge: X-FEM never cuts one.
+        Poi1 | Seg4 => &[],
         Seg2 | Seg3 => SEG,
-        Tria3 | Tria6 => TRIA,
+        Tria3 | Tria6 | Tria7 => TRIA,
         Quad4 | Quad8 | Quad9 => QUAD,
         Tetra4 | Tetra10 => TETRA,
-        Penta6 | Penta15 => PENTA,
+        Penta6 | Penta15 | Penta18 => PENTA,
         Pyram5 | Pyram13 => PYRAM,
         Hexa8 | Hexa20 | Hexa27 => HEXA,
     }

@@ -78,7 +78,7 @@ fn cutting(t: CellType, version: u8) -> Option<(usize, &'static [&'static [usize
             (TET, &[&[1, 2, 3, 5], &[2, 3, 5, 7], &[6, 2, 5, 7], &[1, 4, 3, 7], &[1, 7, 4, 8], &[8, 5, 1, 7]])
         }
         Hexa8 => (HEX, &[&[1, 2, 3, 4, 5, 6, 7, 8]]),
-        Penta15 | Pyram13 | Hexa20 | Hexa27 => return None,
+        Seg4 | Tria7 | Penta15 | Penta18 | Pyram13 | Hexa20 | Hexa27 => return None,
     })
 }
 
