@@ -55,7 +55,8 @@ enum Cmd {
         #[arg(long)]
         junit: Option<PathBuf>,
     },
-    /// MED meshes: summary of a file, structured box generator.
+    /// Meshes: summary of a file (MED, ASTER .mail, Gmsh .msh, GIBI .mgib, IDEAS .unv), conversion,
+    /// structured box and ring generators.
     Mesh {
         #[command(subcommand)]
         action: MeshCmd,
@@ -129,13 +130,32 @@ enum Cmd {
 
 #[derive(Subcommand)]
 enum MeshCmd {
-    /// Nodes, cells per type, groups with sizes and bounding box of the
-    /// meshes of a MED file.
+    /// Nodes, cells per type, groups with sizes and bounding box of the meshes of a file, read as
+    /// LIRE_MAILLAGE reads it (the format from the extension: .med/.mmed/.rmed, .mail, .msh,
+    /// .mgib, .unv/.msup; or --format).
     Info {
         file: PathBuf,
-        /// Only this mesh (default: every mesh of the file).
+        /// Only this mesh of a MED file (default: every mesh of the file).
         #[arg(long)]
         mesh: Option<String>,
+        /// MED, ASTER, GMSH, GIBI or IDEAS (default: from the extension).
+        #[arg(long)]
+        format: Option<String>,
+    },
+    /// Convert a mesh of any format LIRE_MAILLAGE reads into MED (.med/.mmed/.rmed) or Code_Aster's
+    /// text format (.mail), keeping its names, numbering and groups.
+    Convert {
+        input: PathBuf,
+        output: PathBuf,
+        /// Format of the input (default: from the extension).
+        #[arg(long)]
+        format: Option<String>,
+        /// The mesh of a MED input (default: the first).
+        #[arg(long)]
+        mesh: Option<String>,
+        /// Name of the mesh in the output (default: the input's mesh name, or its file stem).
+        #[arg(long)]
+        name: Option<String>,
     },
     /// Write a structured box mesh with named boundary groups (2D: edge
     /// groups BAS, DROITE, HAUT, GAUCHE and cell group SURFACE; 3D: face
@@ -194,21 +214,78 @@ enum MeshCmd {
     },
 }
 
+/// The meshes of a file as LIRE_MAILLAGE reads them, with their names: every mesh of a MED file (or
+/// only `only`), the one mesh of a text file (named after the file).
+fn read_meshes(
+    file: &std::path::Path,
+    format: Option<&str>,
+    only: Option<&str>,
+) -> Result<Vec<(String, aster::mesh::Mesh)>, aster::diag::Error> {
+    use aster::diag::Error;
+    let ext = file.extension().and_then(|e| e.to_str()).unwrap_or("");
+    let format = match format {
+        Some(f) => f.to_ascii_uppercase(),
+        None if matches!(ext.to_ascii_lowercase().as_str(), "med" | "mmed" | "rmed") => "MED".to_string(),
+        None => match aster::mesh::TextFormat::from_extension(ext) {
+            Some(aster::mesh::TextFormat::Aster) => "ASTER".into(),
+            Some(aster::mesh::TextFormat::Gmsh) => "GMSH".into(),
+            Some(aster::mesh::TextFormat::Gibi) => "GIBI".into(),
+            Some(aster::mesh::TextFormat::Ideas { .. }) => "IDEAS".into(),
+            None => {
+                return Err(Error::runtime(format!(
+                    "{}: which format? Give --format MED, ASTER, GMSH, GIBI or IDEAS",
+                    file.display()
+                )))
+            }
+        },
+    };
+    if format == "MED" {
+        let names = match only {
+            Some(m) => vec![m.to_string()],
+            None => aster::med::list_meshes(file)?,
+        };
+        if names.is_empty() {
+            return Err(Error::io(format!("MED file {}: contains no mesh", file.display())));
+        }
+        return names.into_iter().map(|n| aster::med::read_mesh(file, Some(&n)).map(|m| (n, m))).collect();
+    }
+    let text = aster::mesh::TextFormat::from_keyword(&format)
+        .ok_or_else(|| Error::runtime(format!("--format {format}: expected MED, ASTER, GMSH, GIBI or IDEAS")))?;
+    let bytes = std::fs::read(file).map_err(|e| Error::io(format!("{}: {e}", file.display())))?;
+    let name = file.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+    let m = text.read(&String::from_utf8_lossy(&bytes), &name).map_err(Error::io)?;
+    let stem = file.file_stem().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+    Ok(vec![(stem, m)])
+}
+
 fn mesh_command(action: MeshCmd) -> Result<(), aster::diag::Error> {
     match action {
-        MeshCmd::Info { file, mesh } => {
-            let names = match mesh {
-                Some(m) => vec![m],
-                None => aster::med::list_meshes(&file)?,
-            };
-            if names.is_empty() {
-                return Err(aster::diag::Error::io(format!("MED file {}: contains no mesh", file.display())));
-            }
+        MeshCmd::Info { file, mesh, format } => {
+            let meshes = read_meshes(&file, format.as_deref(), mesh.as_deref())?;
             println!("file {}", file.display());
-            for n in names {
-                let m = aster::med::read_mesh(&file, Some(&n))?;
+            for (n, m) in meshes {
                 print!("{}", m.describe(&n));
             }
+            Ok(())
+        }
+        MeshCmd::Convert { input, output, format, mesh, name } => {
+            let meshes = read_meshes(&input, format.as_deref(), mesh.as_deref())?;
+            let (found, m) = meshes.into_iter().next().expect("read_meshes returns at least one mesh");
+            let name = name.unwrap_or(found);
+            let ext = output.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+            match ext.as_str() {
+                "med" | "mmed" | "rmed" => aster::med::write_mesh(&output, &m, &name)?,
+                "mail" => std::fs::write(&output, aster::mesh::aster_text::write(&m, &name))
+                    .map_err(|e| aster::diag::Error::io(format!("{}: {e}", output.display())))?,
+                _ => {
+                    return Err(aster::diag::Error::runtime(format!(
+                        "{}: the output must be a MED file (.med, .mmed, .rmed) or a .mail file",
+                        output.display()
+                    )))
+                }
+            }
+            println!("wrote {}", output.display());
+            print!("{}", m.describe(&name));
             Ok(())
         }
         MeshCmd::Box { cell, n, size, output, name, distort, bend, seed } => {

@@ -7,6 +7,9 @@ pub mod aster_text;
 pub mod convert;
 pub mod derive;
 pub mod generate;
+pub mod gibi;
+pub mod gmsh;
+pub mod ideas;
 
 use std::collections::BTreeMap;
 
@@ -140,6 +143,53 @@ impl CellType {
             Penta6 | Penta15 | Penta18 => 6,
             Pyram5 | Pyram13 => 5,
             Hexa8 | Hexa20 | Hexa27 => 8,
+        }
+    }
+}
+
+/// The text mesh formats LIRE_MAILLAGE reads besides MED.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TextFormat {
+    /// Code_Aster's own (`.mail`).
+    Aster,
+    /// Gmsh (`.msh`, formats 1, 2 and 4 in ASCII).
+    Gmsh,
+    /// Cast3M's saved files (`.mgib`).
+    Gibi,
+    /// I-DEAS universal files (`.unv`, `.msup`); `colour_groups`: CREA_GROUP_COUL='OUI'.
+    Ideas { colour_groups: bool },
+}
+
+impl TextFormat {
+    /// The format of LIRE_MAILLAGE's FORMAT keyword (`ASTER`, `GMSH`, `GIBI`, `IDEAS`).
+    pub fn from_keyword(name: &str) -> Option<TextFormat> {
+        Some(match name {
+            "ASTER" => TextFormat::Aster,
+            "GMSH" => TextFormat::Gmsh,
+            "GIBI" => TextFormat::Gibi,
+            "IDEAS" => TextFormat::Ideas { colour_groups: false },
+            _ => return None,
+        })
+    }
+
+    /// The format a file's extension names: `.mail`, `.msh`, `.mgib`, `.unv` / `.msup`.
+    pub fn from_extension(ext: &str) -> Option<TextFormat> {
+        Some(match ext.to_ascii_lowercase().as_str() {
+            "mail" => TextFormat::Aster,
+            "msh" => TextFormat::Gmsh,
+            "mgib" | "gibi" => TextFormat::Gibi,
+            "unv" | "msup" | "ideas" => TextFormat::Ideas { colour_groups: false },
+            _ => return None,
+        })
+    }
+
+    /// Read a mesh of this format from its text; `file` names it in errors (`file:line: message`).
+    pub fn read(self, src: &str, file: &str) -> Result<Mesh, String> {
+        match self {
+            TextFormat::Aster => aster_text::read(src, file),
+            TextFormat::Gmsh => gmsh::read(src, file),
+            TextFormat::Gibi => gibi::read(src, file),
+            TextFormat::Ideas { colour_groups } => ideas::read(src, file, colour_groups),
         }
     }
 }

@@ -1,4 +1,4 @@
-//! LIRE_MAILLAGE, DEFI_GROUP and IMPR_RESU (MED: meshes and node fields of results).
+//! LIRE_MAILLAGE (every format), DEFI_GROUP.
 //!
 //! DEFI_GROUP follows Code_Aster's `sscgma` / `sscgno`: destruction first,
 //! then CREA_GROUP_MA, then CREA_GROUP_NO, occurrence by occurrence, so an
@@ -25,33 +25,43 @@ use std::rc::Rc;
 
 // ------------------------------------------------------------------ LIRE_MAILLAGE
 
+/// LIRE_MAILLAGE: a MED file (the mesh NOM_MED, else the first), or a text format read as Code_Aster
+/// converts it (ASTER, GMSH, GIBI, IDEAS: see `mesh::TextFormat`).
 pub fn lire_maillage(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let format = a.text("FORMAT").unwrap_or("MED");
-    if format != "MED" && format != "ASTER" {
-        return Err(a.err("FORMAT", format!("FORMAT='{format}' is not supported yet (only 'MED' and 'ASTER')")));
-    }
     let unit = a.int("UNITE").unwrap_or(20);
     let path = ctx.io.unit_path(unit, false).map_err(|e| a.locate(e, "UNITE"))?;
-    if format == "ASTER" {
-        // Code_Aster's text format (.mail).
-        let bytes = std::fs::read(&path)
-            .map_err(|e| a.err("UNITE", format!("unit {unit}: cannot read {}: {e}", path.display())))?;
-        let src = String::from_utf8_lossy(&bytes);
-        let file = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
-        let mesh = crate::mesh::aster_text::read(&src, &file).map_err(|e| a.err("UNITE", e))?;
-        if a.int("INFO").unwrap_or(1) >= 2 {
-            ctx.io.mess(&format!("LIRE_MAILLAGE: unit {unit} ({})\n{}", path.display(), mesh.describe(&file)));
-        }
-        return Ok(Some(ConceptData::Mesh(Rc::new(mesh))));
+    let info = a.int("INFO").unwrap_or(1);
+    // INFO_MED only sets the verbosity of Code_Aster's MED library, PARTITIONNEUR='PTSCOTCH' the
+    // distribution of a mesh over MPI processes: a mesh read whole on one process (what
+    // Code_Aster does without MPI, with an alarm) is the same mesh.
+    let _ = a.int("INFO_MED");
+    if a.text("PARTITIONNEUR") == Some("PTSCOTCH") {
+        ctx.io.mess(" <A> LIRE_MAILLAGE: PARTITIONNEUR='PTSCOTCH' needs MPI: the mesh is read whole\n");
     }
-    let nom_med = a.text("NOM_MED");
-    let mesh =
-        med::read_mesh(&path, nom_med).map_err(|e| a.locate(e, if nom_med.is_some() { "NOM_MED" } else { "UNITE" }))?;
-    if a.int("INFO").unwrap_or(1) >= 2 {
-        let shown = match nom_med {
-            Some(n) => n.to_string(),
-            None => med::list_meshes(&path).ok().and_then(|v| v.into_iter().next()).unwrap_or_default(),
-        };
+    let (mesh, shown) = match crate::mesh::TextFormat::from_keyword(format) {
+        Some(mut text) => {
+            if a.text("CREA_GROUP_COUL") == Some("OUI") {
+                text = crate::mesh::TextFormat::Ideas { colour_groups: true };
+            }
+            let bytes = std::fs::read(&path)
+                .map_err(|e| a.err("UNITE", format!("unit {unit}: cannot read {}: {e}", path.display())))?;
+            let src = String::from_utf8_lossy(&bytes);
+            let file = path.file_name().map(|f| f.to_string_lossy().into_owned()).unwrap_or_default();
+            (text.read(&src, &file).map_err(|e| a.err("UNITE", e))?, file)
+        }
+        None => {
+            let nom_med = a.text("NOM_MED");
+            let mesh = med::read_mesh(&path, nom_med)
+                .map_err(|e| a.locate(e, if nom_med.is_some() { "NOM_MED" } else { "UNITE" }))?;
+            let shown = match nom_med {
+                Some(n) => n.to_string(),
+                None => med::list_meshes(&path).ok().and_then(|v| v.into_iter().next()).unwrap_or_default(),
+            };
+            (mesh, shown)
+        }
+    };
+    if info >= 2 {
         ctx.io.mess(&format!("LIRE_MAILLAGE: unit {unit} ({})\n{}", path.display(), mesh.describe(&shown)));
     }
     Ok(Some(ConceptData::Mesh(Rc::new(mesh))))
