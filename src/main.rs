@@ -141,6 +141,9 @@ enum MeshCmd {
         /// MED, ASTER, GMSH, GIBI or IDEAS (default: from the extension).
         #[arg(long)]
         format: Option<String>,
+        /// Also run LIRE_MAILLAGE's VERI_MAIL checks and list what they find.
+        #[arg(long)]
+        check: bool,
     },
     /// Convert a mesh of any format LIRE_MAILLAGE reads into MED (.med/.mmed/.rmed) or Code_Aster's
     /// text format (.mail), keeping its names, numbering and groups.
@@ -260,11 +263,23 @@ fn read_meshes(
 
 fn mesh_command(action: MeshCmd) -> Result<(), aster::diag::Error> {
     match action {
-        MeshCmd::Info { file, mesh, format } => {
+        MeshCmd::Info { file, mesh, format, check } => {
             let meshes = read_meshes(&file, format.as_deref(), mesh.as_deref())?;
             println!("file {}", file.display());
             for (n, m) in meshes {
                 print!("{}", m.describe(&n));
+                if check {
+                    let r = aster::mesh::check::check(&m, 1e-3);
+                    if r.alarms.is_empty() && r.errors.is_empty() {
+                        println!("  VERI_MAIL: nothing to report");
+                    }
+                    for a in &r.alarms {
+                        println!("  VERI_MAIL <A>: {a}");
+                    }
+                    for e in &r.errors {
+                        println!("  VERI_MAIL <E>: {e}");
+                    }
+                }
             }
             Ok(())
         }

@@ -4,6 +4,7 @@
 //! from and to other orders (MED) is the job of the format layer alone.
 
 pub mod aster_text;
+pub mod check;
 pub mod convert;
 pub mod derive;
 pub mod generate;

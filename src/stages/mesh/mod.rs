@@ -1,4 +1,4 @@
-//! LIRE_MAILLAGE (every format), DEFI_GROUP.
+//! LIRE_MAILLAGE (every format, with VERI_MAIL's checks), DEFI_GROUP.
 //!
 //! DEFI_GROUP follows Code_Aster's `sscgma` / `sscgno`: destruction first,
 //! then CREA_GROUP_MA, then CREA_GROUP_NO, occurrence by occurrence, so an
@@ -26,7 +26,10 @@ use std::rc::Rc;
 // ------------------------------------------------------------------ LIRE_MAILLAGE
 
 /// LIRE_MAILLAGE: a MED file (the mesh NOM_MED, else the first), or a text format read as Code_Aster
-/// converts it (ASTER, GMSH, GIBI, IDEAS: see `mesh::TextFormat`).
+/// converts it (ASTER, GMSH, GIBI, IDEAS: see `mesh::TextFormat`); then, where VERI_MAIL is given,
+/// its checks: their alarms go to the message file, their errors stop the command. (Code_Aster runs
+/// them on every mesh; without the keyword we do not yet, so as not to stop a mesh Code_Aster takes on
+/// a check of ours that is stricter than its own.)
 pub fn lire_maillage(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let format = a.text("FORMAT").unwrap_or("MED");
     let unit = a.int("UNITE").unwrap_or(20);
@@ -64,7 +67,36 @@ pub fn lire_maillage(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     if info >= 2 {
         ctx.io.mess(&format!("LIRE_MAILLAGE: unit {unit} ({})\n{}", path.display(), mesh.describe(&shown)));
     }
+    if let Some(v) = a.fact("VERI_MAIL") {
+        if v.text("VERIF") != Some("NON") {
+            let report = crate::mesh::check::check(&mesh, v.real("APLAT").unwrap_or(1.0e-3));
+            let mut text = String::new();
+            for m in &report.alarms {
+                text.push_str(&format!(" <A> LIRE_MAILLAGE: VERI_MAIL: {m}\n"));
+            }
+            for m in &report.errors {
+                text.push_str(&format!(" <E> LIRE_MAILLAGE: VERI_MAIL: {m}\n"));
+            }
+            if !text.is_empty() {
+                ctx.io.mess(&text);
+            }
+            if let Some(first) = report.errors.first() {
+                return Err(v.err(
+                    "VERIF",
+                    format!("the mesh is invalid ({first}{}); VERIF='NON' skips the check", more(report.errors.len())),
+                ));
+            }
+        }
+    }
     Ok(Some(ConceptData::Mesh(Rc::new(mesh))))
+}
+
+fn more(n: usize) -> String {
+    if n > 1 {
+        format!(", and {} more error(s) in the message file", n - 1)
+    } else {
+        String::new()
+    }
 }
 
 // ------------------------------------------------------------------ DEFI_GROUP

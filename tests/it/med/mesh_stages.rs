@@ -457,3 +457,29 @@ fn bad_input_is_a_located_error() {
         assert!(text(&o).1.contains(f.file_name().unwrap().to_str().unwrap()), "{:?}", text(&o));
     }
 }
+
+/// LIRE_MAILLAGE VERI_MAIL: an orphan node and double cells are alarms in the message file, a cell
+/// repeating a node stops the command by name unless VERIF='NON'.
+#[test]
+fn veri_mail_warns_and_stops_as_code_aster() {
+    let dir = scratch!("veri_mail");
+    let mail = "COOR_2D\nN1 0. 0.\nN2 1. 0.\nN3 1. 1.\nN4 0. 1.\nN5 5. 5.\nFINSF\n\
+                QUAD4\nM1 N1 N2 N3 N4\nM2 N2 N3 N4 N1\nFINSF\nSEG2\nM3 N1 N2\nFINSF\nFIN\n";
+    let path = dir.join("m.mail");
+    std::fs::write(&path, mail).unwrap();
+    let comm = |veri: &str| format!("DEBUT()\nM = LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20{veri})\nFIN()\n");
+    let o = run_comm(&dir, "alarms", &comm(", VERI_MAIL=_F(VERIF='OUI')"), &[(20, &path)]);
+    let (_, err) = text(&o);
+    assert!(o.status.success(), "{err}");
+    let mess = std::fs::read_to_string(dir.join("alarms.out/alarms.mess")).unwrap();
+    assert!(mess.contains("<A> LIRE_MAILLAGE: VERI_MAIL: 1 node(s) belong to no cell (orphan nodes): N5"), "{mess}");
+    assert!(mess.contains("(double cells): M2 and M1 (QUAD4)"), "{mess}");
+    // A degenerate cell is an error: the command stops, naming the cell; VERIF='NON' reads the mesh.
+    std::fs::write(&path, mail.replace("M3 N1 N2", "M3 N1 N1")).unwrap();
+    let o = run_comm(&dir, "error", &comm(", VERI_MAIL=_F(VERIF='OUI')"), &[(20, &path)]);
+    let (_, err) = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("cell M3 (SEG2) is degenerate"), "{err}");
+    run_ok(&dir, "skipped", &comm(", VERI_MAIL=_F(VERIF='NON')"), &[(20, &path)]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
