@@ -171,6 +171,11 @@ pub fn check_deadline() -> Result<()> {
     }
 }
 
+/// The time left before this thread's deadline (zero once passed), `None` without a deadline.
+pub fn time_left() -> Option<Duration> {
+    DEADLINE.with(Cell::get).map(|d| d.at.saturating_duration_since(Instant::now()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -183,5 +188,8 @@ mod tests {
         assert_eq!(e.msg, "time limit of 0 s exceeded");
         assert!(with_deadline(Some(Deadline::after(Duration::from_secs(60))), check_deadline).is_ok());
         assert!(check_deadline().is_ok());
+        assert_eq!(time_left(), None);
+        let left = with_deadline(Some(Deadline::after(Duration::from_secs(60))), time_left).unwrap();
+        assert!(left > Duration::from_secs(59) && left <= Duration::from_secs(60));
     }
 }

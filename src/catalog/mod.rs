@@ -58,6 +58,7 @@ impl Catalogue {
                 schema::Produces::Nothing => "-".to_string(),
                 schema::Produces::Fixed(k) => k.aster_name().to_string(),
                 schema::Produces::Dynamic(_) => "depends on keywords".to_string(),
+                schema::Produces::Int => "an integer".to_string(),
             };
             s.push_str(&format!(
                 "| [{0}](#{1}) | {2} | {prod} |\n",

@@ -205,6 +205,9 @@ pub enum Produces {
     Fixed(ConceptKind),
     /// The type depends on the arguments (CALC_FONCTION, CREA_CHAMP, ...).
     Dynamic(fn(&Args) -> Result<ConceptKind>),
+    /// A Python integer, not a concept (DEFI_FICHIER's free unit), which the stage sets in
+    /// `Ctx::int_result`; nothing when it sets none.
+    Int,
 }
 
 impl std::fmt::Debug for Produces {
@@ -213,6 +216,7 @@ impl std::fmt::Debug for Produces {
             Produces::Nothing => write!(f, "Nothing"),
             Produces::Fixed(k) => write!(f, "Fixed({k})"),
             Produces::Dynamic(_) => write!(f, "Dynamic"),
+            Produces::Int => write!(f, "Int"),
         }
     }
 }
@@ -430,6 +434,11 @@ impl Command {
     }
     pub fn produces_dyn(mut self, f: fn(&Args) -> Result<ConceptKind>) -> Self {
         self.produces = Produces::Dynamic(f);
+        self
+    }
+    /// The command returns a Python integer (see [`Produces::Int`]).
+    pub fn produces_int(mut self) -> Self {
+        self.produces = Produces::Int;
         self
     }
     pub fn reuse(mut self) -> Self {

@@ -6,6 +6,7 @@ pub mod export;
 pub mod guard;
 pub mod session;
 pub mod suite;
+mod units;
 
 use crate::diag::{with_deadline, Deadline, Error, ErrorKind};
 use crate::interp::Interp;
@@ -41,6 +42,9 @@ pub struct Outcome {
     pub error: Option<String>,
     /// The kind of that error (`Internal` for a caught panic).
     pub error_kind: Option<ErrorKind>,
+    /// The command it arose in and its message without the location.
+    pub error_command: Option<String>,
+    pub error_message: Option<String>,
     pub mess: Option<PathBuf>,
     pub seconds: f64,
     pub timings: Vec<Timing>,
@@ -65,8 +69,10 @@ impl Outcome {
             name: name.into(),
             diagnostic: Diagnostic::of_error(kind),
             records: Vec::new(),
+            error_message: Some(error.clone()),
             error: Some(error),
             error_kind: Some(kind),
+            error_command: None,
             mess: None,
             seconds: 0.0,
             timings: Vec::new(),
@@ -127,44 +133,48 @@ pub fn run_export(path: &Path, opts: &RunOptions) -> Outcome {
             format!("unit {}: {what} {} does not exist (named by {})", f.unit, f.path.display(), f.origin),
         );
     }
-    let comms = ex.comm_files();
-    let comm = match comms.as_slice() {
-        [one] => one.path.clone(),
-        [] => return Outcome::failed(&name, ErrorKind::Io, format!("{}: no 'F comm FILE D 1' line", path.display())),
-        _ => {
-            return Outcome::failed(
-                &name,
-                ErrorKind::Unsupported,
-                format!("{}: several command files (POURSUITE) are not supported yet", path.display()),
-            )
-        }
-    };
+    // Several command files (`.comm`, `.com1`, `.com2`, ...) are a study continued with POURSUITE:
+    // they run in the .export's order, one after the other, in one interpreter.
+    let comms: Vec<PathBuf> = ex.comm_files().iter().map(|f| f.path.clone()).collect();
+    if comms.is_empty() {
+        return Outcome::failed(&name, ErrorKind::Io, format!("{}: no 'F comm FILE D 1' line", path.display()));
+    }
     let mut units: Vec<(i64, PathBuf, Dir)> =
         ex.files.iter().filter(|f| f.kind != "comm").map(|f| (f.unit, f.path.clone(), f.dir)).collect();
     units.extend(opts.units.iter().cloned());
     let mess = ex.files.iter().find(|f| f.kind == "mess").map(|f| f.path.clone());
-    run_file(&comm, &name, units, mess, ex.is_validation(), opts)
+    run_files(&comms, &name, units, mess, ex.is_validation(), opts)
 }
 
 /// Run a command file with units given on the command line.
 pub fn run_comm(path: &Path, opts: &RunOptions) -> Outcome {
-    run_file(path, &stem(path), opts.units.clone(), None, false, opts)
+    run_files(&[path.to_path_buf()], &stem(path), opts.units.clone(), None, false, opts)
 }
 
-fn run_file(
-    comm: &Path,
+/// The name and text of each command file.
+fn read_sources(comms: &[PathBuf]) -> std::result::Result<Vec<(String, String)>, String> {
+    comms
+        .iter()
+        .map(|comm| {
+            let bytes = std::fs::read(comm).map_err(|e| format!("{}: {e}", comm.display()))?;
+            let file = comm.file_name().and_then(|f| f.to_str()).unwrap_or("?").to_string();
+            Ok((file, decode(&bytes)))
+        })
+        .collect()
+}
+
+fn run_files(
+    comms: &[PathBuf],
     name: &str,
     units: Vec<(i64, PathBuf, Dir)>,
     mess_path: Option<PathBuf>,
     validation: bool,
     opts: &RunOptions,
 ) -> Outcome {
-    let bytes = match std::fs::read(comm) {
-        Ok(b) => b,
-        Err(e) => return Outcome::failed(name, ErrorKind::Io, format!("{}: {e}", comm.display())),
-    };
-    let file = comm.file_name().and_then(|f| f.to_str()).unwrap_or("?").to_string();
-    run_text(&file, &decode(&bytes), name, units, mess_path, validation, opts)
+    match read_sources(comms) {
+        Ok(sources) => run_text(&sources, name, units, mess_path, validation, opts),
+        Err(e) => Outcome::failed(name, ErrorKind::Io, e),
+    }
 }
 
 /// The scene `aster run` runs when given no case (comm/hardening_curve.comm).
@@ -192,14 +202,15 @@ pub fn run_default(opts: &RunOptions) -> Outcome {
         let out = opts.out_dir.clone().unwrap_or_else(|| PathBuf::from("."));
         units.push((80, out.join(format!("{name}.rmed")), Dir::Out));
     }
-    let o = run_text(file, src, name, units, None, false, opts);
+    let o = run_text(&[(file.to_string(), src.to_string())], name, units, None, false, opts);
     let _ = std::fs::remove_dir_all(&dir);
     o
 }
 
+/// Run command files one after the other in one interpreter: the first starts the study (DEBUT),
+/// the others continue it (POURSUITE) with every name the earlier ones bound; FIN ends each file.
 fn run_text(
-    file: &str,
-    src: &str,
+    sources: &[(String, String)],
     name: &str,
     units: Vec<(i64, PathBuf, Dir)>,
     mess_path: Option<PathBuf>,
@@ -220,29 +231,39 @@ fn run_text(
         Ok(w) => w,
         Err(e) => return Outcome::failed(name, e.kind, e.msg),
     };
-    let file = file.to_string();
-    let src = src.to_string();
     let globals = Rc::new(RefCell::new(HashMap::new()));
-    let mut session = Session::new(Mode::Run, &file, &src, globals.clone(), work.0.clone());
+    let (first_file, first_src) = sources.first().cloned().unwrap_or_default();
+    let mut session = Session::new(Mode::Run, &first_file, &first_src, globals.clone(), work.0.clone());
     session.units = units.into_iter().map(|(u, p, d)| (u, (p, d))).collect();
     session.echo = opts.echo;
     session.validation = validation;
 
-    let at = Rc::new(Cell::new(Span::default()));
-    let result = guard::catch(|| {
-        crate::syntax::parse_module(&src)
-            .map_err(|e| {
-                let mut err = Error::new(ErrorKind::Syntax, e.message);
-                err.span = Some(Span { start: e.offset, end: e.offset });
-                err
-            })
-            .and_then(|module| {
-                let mut it = Interp::new(globals.clone(), Some(&mut session));
-                it.track(at.clone());
-                it.run(&module)
-            })
-    })
-    .unwrap_or_else(|panic| Err(Error::internal(&panic).at(at.get())));
+    let mut result = Ok(());
+    let (mut file, mut src) = (first_file, first_src);
+    for (k, (f, s)) in sources.iter().enumerate() {
+        (file, src) = (f.clone(), s.clone());
+        if k > 0 {
+            session.continue_with(&file, &src);
+        }
+        let at = Rc::new(Cell::new(Span::default()));
+        result = guard::catch(|| {
+            crate::syntax::parse_module(&src)
+                .map_err(|e| {
+                    let mut err = Error::new(ErrorKind::Syntax, e.message);
+                    err.span = Some(Span { start: e.offset, end: e.offset });
+                    err
+                })
+                .and_then(|module| {
+                    let mut it = Interp::new(globals.clone(), Some(&mut session));
+                    it.track(at.clone());
+                    it.run(&module)
+                })
+        })
+        .unwrap_or_else(|panic| Err(Error::internal(&panic).at(at.get())));
+        if result.is_err() {
+            break;
+        }
+    }
     let (diagnostic, error) = match &result {
         Err(e) => {
             let located = e.located(&file, &src);
@@ -301,7 +322,9 @@ fn run_text(
         diagnostic,
         records: session.records.clone(),
         error,
-        error_kind: result.err().map(|e| e.kind),
+        error_kind: result.as_ref().err().map(|e| e.kind),
+        error_command: result.as_ref().err().and_then(|e| e.command.clone()),
+        error_message: result.as_ref().err().map(|e| e.msg.clone()),
         mess: written,
         seconds: t0.elapsed().as_secs_f64(),
         timings: session.timings.clone(),

@@ -9,7 +9,7 @@ use crate::catalog::{catalogue, validate};
 use crate::concepts::{Concept, ConceptData};
 use crate::diag::{Error, Result};
 use crate::interp::{Host, KwArg, Scope, Value};
-use crate::stages::{self, CheckRecord, Ctx, StageIo};
+use crate::stages::{self, Access, CheckRecord, Ctx, StageIo, UnitState};
 use crate::syntax::ast::Span;
 use std::collections::{BTreeMap, HashSet};
 use std::io::Write;
@@ -49,6 +49,8 @@ pub struct Session {
     pub validation: bool,
     finished: bool,
     ncommands: usize,
+    /// Units DEFI_FICHIER associated with files of the work folder.
+    pub(super) assoc: BTreeMap<i64, Assoc>,
     /// The test hook `ASTER_INJECT_PANIC`: the command whose stage panics (see `guard`).
     inject_panic: Option<String>,
 }
@@ -71,6 +73,7 @@ impl Session {
             validation: false,
             finished: false,
             ncommands: 0,
+            assoc: BTreeMap::new(),
             inject_panic: super::guard::injected_panic(),
         }
     }
@@ -108,7 +111,7 @@ impl Session {
         // name of X, as in Code_Aster 2025, whose import drops `reuse` and whose reentrant commands
         // return the object they modify (wtnv122d: `MAILLAGE = MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, ...)`).
         let kind = match &cmd.produces {
-            Produces::Nothing => None,
+            Produces::Nothing | Produces::Int => None,
             Produces::Fixed(k) => Some(*k),
             Produces::Dynamic(f) => Some(f(&args).map_err(|e| e.at(span).in_command(name))?),
         };
@@ -123,6 +126,9 @@ impl Session {
             self.finished = true;
         }
         if self.mode == Mode::Check {
+            if matches!(cmd.produces, Produces::Int) {
+                return Ok(Value::Int(0));
+            }
             return Ok(match kind {
                 Some(k) => match &validated.reuse {
                     Some(r) => Value::Concept(r.clone()),
@@ -138,14 +144,18 @@ impl Session {
         let globals = self.globals.clone();
         let inject_panic = self.inject_panic.as_deref() == Some(name);
         let reuse = validated.reuse.clone();
-        let mut ctx = Ctx { io: self, globals, command: name, line, reuse };
+        let mut ctx = Ctx { io: self, globals, command: name, line, reuse, int_result: None };
         args.reset_reads();
         take_undeclared_lookups();
         if inject_panic {
             panic!("panic injected in {name} by ASTER_INJECT_PANIC (a test hook)");
         }
         let data = stage(&mut ctx, &args).map_err(|e| e.at(span).in_command(name))?;
+        let int_result = ctx.int_result;
         stages::all_keywords_used(name, &args).map_err(|e| e.at(span).in_command(name))?;
+        if matches!(cmd.produces, Produces::Int) {
+            return Ok(int_result.map(Value::Int).unwrap_or(Value::None));
+        }
         match (kind, data) {
             (Some(k), Some(d)) => Ok(match &validated.reuse {
                 Some(r) => {
@@ -228,7 +238,9 @@ impl StageIo for Session {
     }
 
     fn read_unit(&mut self, unit: i64) -> Result<String> {
-        let path = if self.written.contains(&unit) {
+        let path = if let Some(p) = self.associated(unit) {
+            p.clone()
+        } else if self.written.contains(&unit) {
             self.workfile(unit)
         } else {
             match self.units.get(&unit) {
@@ -257,6 +269,15 @@ impl StageIo for Session {
             }
             _ => {}
         }
+        if let Some(p) = self.associated(unit) {
+            // DEFI_FICHIER opened it (emptied for ACCES='NEW'): every write goes after the last.
+            let mut f = std::fs::OpenOptions::new()
+                .create(true)
+                .append(true)
+                .open(p)
+                .map_err(|e| Error::io(format!("unit {unit}: cannot write {}: {e}", p.display())))?;
+            return f.write_all(text.as_bytes()).map_err(|e| Error::io(format!("unit {unit}: {e}")));
+        }
         let path = self.workfile(unit);
         let first = self.written.insert(unit);
         let mut f = std::fs::OpenOptions::new()
@@ -271,6 +292,12 @@ impl StageIo for Session {
     }
 
     fn unit_path(&mut self, unit: i64, write: bool) -> Result<PathBuf> {
+        if let Some(p) = self.associated(unit) {
+            if !write && !p.exists() {
+                return Err(Error::io(format!("unit {unit}: file {} does not exist", p.display())));
+            }
+            return Ok(p.clone());
+        }
         if write {
             self.written.insert(unit);
             return Ok(self.workfile(unit));
@@ -293,6 +320,26 @@ impl StageIo for Session {
 
     fn is_validation(&self) -> bool {
         self.validation
+    }
+
+    fn associate(&mut self, unit: Option<i64>, file: Option<&str>, access: Access, reserve: bool) -> Result<i64> {
+        self.associate_unit(unit, file, access, reserve)
+    }
+
+    fn release(&mut self, unit: Option<i64>, file: Option<&str>) -> Result<i64> {
+        self.release_unit(unit, file)
+    }
+
+    fn unit_state(&mut self, unit: Option<i64>, file: Option<&str>) -> (UnitState, Option<String>) {
+        self.state_of(unit, file)
+    }
+
+    fn free_unit(&mut self) -> Option<i64> {
+        self.free_unit_number()
+    }
+
+    fn forget(&mut self, concept: &crate::concepts::ConceptRef) -> Vec<String> {
+        self.forget_concept(concept)
     }
 }
 
@@ -338,8 +385,31 @@ pub fn write_atomic(path: &Path, data: &[u8]) -> Result<()> {
 }
 
 impl Session {
+    /// Go on with the next command file of a continued study (POURSUITE): its name and text locate
+    /// what it does, and the FIN of the previous file no longer stops the interpreter.
+    pub fn continue_with(&mut self, file: &str, src: &str) {
+        self.file = file.to_string();
+        self.src = src.to_string();
+        self.finished = false;
+        self.say(&format!("\n  # Continued in {file} (POURSUITE)\n"));
+    }
+
     /// How many command calls were made.
     pub fn ncommands(&self) -> usize {
         self.ncommands
     }
+
+    /// The units written during the run.
+    pub(super) fn written_units(&self) -> &HashSet<i64> {
+        &self.written
+    }
+}
+
+/// A unit DEFI_FICHIER associated (`runner::units`) with (or reserved for) a file.
+#[derive(Debug, Clone)]
+pub struct Assoc {
+    /// The file as the command file named it.
+    pub name: String,
+    pub path: PathBuf,
+    pub reserved: bool,
 }

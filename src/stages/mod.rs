@@ -61,6 +61,50 @@ pub trait StageIo {
     fn is_validation(&self) -> bool {
         false
     }
+    /// DEFI_FICHIER: associate `unit` (or, without one, a free unit, which is returned) with a
+    /// file of the run's folder (`file`, relative), or reserve it (`reserve`).
+    fn associate(&mut self, unit: Option<i64>, file: Option<&str>, access: Access, reserve: bool) -> Result<i64> {
+        let _ = (unit, file, access, reserve);
+        Err(crate::diag::Error::unsupported("associating units with files is not supported here"))
+    }
+    /// DEFI_FICHIER ACTION='LIBERER': free a unit (or the unit of a file); returns the unit.
+    fn release(&mut self, unit: Option<i64>, file: Option<&str>) -> Result<i64> {
+        let _ = (unit, file);
+        Err(crate::diag::Error::unsupported("freeing units is not supported here"))
+    }
+    /// The state of a unit (or of the unit of a file) and its file.
+    fn unit_state(&mut self, unit: Option<i64>, file: Option<&str>) -> (UnitState, Option<String>) {
+        let _ = (unit, file);
+        (UnitState::Closed, None)
+    }
+    /// The largest free unit from 99 down to 70 (Code_Aster's `ulnume`), None if all are taken.
+    fn free_unit(&mut self) -> Option<i64> {
+        None
+    }
+    /// DETRUIRE: unbind every name bound to `concept`; returns the names.
+    fn forget(&mut self, concept: &crate::concepts::ConceptRef) -> Vec<String> {
+        let _ = concept;
+        Vec::new()
+    }
+}
+
+/// How DEFI_FICHIER opens a file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Access {
+    /// Created, or emptied if it exists.
+    New,
+    /// Written after what it holds.
+    Append,
+    /// It must exist.
+    Old,
+}
+
+/// The state of a logical unit, as INFO_EXEC_ASTER ETAT_UNITE reports it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum UnitState {
+    Open,
+    Reserved,
+    Closed,
 }
 
 /// The stage's context for one command.
@@ -74,6 +118,8 @@ pub struct Ctx<'a> {
     /// The concept of `reuse=`, which the command's result replaces (a reentrant STAT_NON_LINE appends
     /// to the steps it holds).
     pub reuse: Option<crate::concepts::ConceptRef>,
+    /// The integer a command of `Produces::Int` returns (DEFI_FICHIER's free unit).
+    pub int_result: Option<i64>,
 }
 
 pub type StageFn = fn(&mut Ctx, &Args) -> Result<Option<ConceptData>>;
@@ -103,7 +149,10 @@ pub fn all_keywords_used(command: &str, args: &Args) -> Result<()> {
 /// The stage of a command, if it has one.
 pub fn stage(name: &str) -> Option<StageFn> {
     Some(match name {
-        "DEBUT" | "FIN" => control::nothing,
+        "DEBUT" | "POURSUITE" | "FIN" => control::nothing,
+        "DETRUIRE" => control::detruire,
+        "DEFI_FICHIER" => control::defi_fichier,
+        "INFO_EXEC_ASTER" => control::info_exec_aster,
         "DEFI_CONSTANTE" => functions::defi_constante,
         "DEFI_FONCTION" => functions::defi_fonction,
         "DEFI_NAPPE" => functions::defi_nappe,

@@ -1,6 +1,7 @@
 //! The command-file language: the Python subset against CPython's behaviour, located errors on bad input,
-//! and the bounded parser fuzzer.
+//! the bounded parser fuzzer, and the control commands of a run (POURSUITE, DETRUIRE, DEFI_FICHIER).
 mod bad_input;
+mod control;
 mod fuzz_parser;
 mod fuzz_pipeline;
 mod python_subset;
