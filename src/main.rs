@@ -51,9 +51,20 @@ enum Cmd {
         /// Folder for per-case outputs (default: ./aster-suite).
         #[arg(long)]
         out: Option<PathBuf>,
-        /// JUnit XML report path (default: OUT/junit.xml).
+        /// JUnit XML report path (default: OUT/junit.xml); stops.csv (what stops the cases), suite.json
+        /// (every case and stop) and passing.txt (the cases that passed) go beside it.
         #[arg(long)]
         junit: Option<PathBuf>,
+        /// Run only the cases this file lists (the first word of each line; `#` comments), as
+        /// tests/passing.txt does.
+        #[arg(long, value_name = "FILE")]
+        list: Option<PathBuf>,
+        /// Stops shown in the terminal summary.
+        #[arg(long, default_value_t = 40)]
+        top: usize,
+        /// No progress bar.
+        #[arg(short, long)]
+        quiet: bool,
     },
     /// Meshes: summary of a file (MED, ASTER .mail, Gmsh .msh, GIBI .mgib, IDEAS .unv), conversion,
     /// structured box and ring generators.
@@ -473,7 +484,7 @@ fn main() -> ExitCode {
                 ExitCode::SUCCESS
             }
         }
-        Cmd::Suite { dir, jobs, out, junit } => {
+        Cmd::Suite { dir, jobs, out, junit, list, top, quiet } => {
             let out = out.unwrap_or_else(|| PathBuf::from("aster-suite"));
             let exe = match std::env::current_exe() {
                 Ok(e) => e,
@@ -482,7 +493,19 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             };
-            let results = match suite::run_suite(&exe, &dir, &out, jobs) {
+            let only = match &list {
+                Some(l) => match std::fs::read_to_string(l) {
+                    Ok(t) => Some(suite::read_list(&t)),
+                    Err(e) => {
+                        eprintln!("aster: {}: {e}", l.display());
+                        return ExitCode::from(2);
+                    }
+                },
+                None => None,
+            };
+            let results = match suite::exports_of(&dir, only.as_deref())
+                .and_then(|ex| suite::run_suite(&exe, &ex, &out, jobs, !quiet))
+            {
                 Ok(r) => r,
                 Err(e) => {
                     eprintln!("aster: {}: {e}", dir.display());
@@ -490,9 +513,20 @@ fn main() -> ExitCode {
                 }
             };
             print!("{}", suite::table(&results));
+            print!("{}", runner::stops::table(&results, top));
             let jpath = junit.unwrap_or_else(|| out.join("junit.xml"));
-            if let Err(e) = std::fs::write(&jpath, suite::junit(&results)) {
-                eprintln!("aster: {}: {e}", jpath.display());
+            let beside = jpath.parent().map(PathBuf::from).unwrap_or_default();
+            let reports = [
+                (jpath.clone(), suite::junit(&results)),
+                (beside.join("stops.csv"), runner::stops::csv(&results)),
+                (beside.join("suite.json"), runner::stops::json(&results)),
+                (beside.join("passing.txt"), suite::passing_list(&results)),
+            ];
+            for (p, text) in reports {
+                match std::fs::write(&p, text) {
+                    Ok(()) => println!("wrote {}", p.display()),
+                    Err(e) => eprintln!("aster: {}: {e}", p.display()),
+                }
             }
             if results.iter().all(|r| r.diagnostic == runner::Diagnostic::Ok) {
                 ExitCode::SUCCESS

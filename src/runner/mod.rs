@@ -5,6 +5,7 @@ pub mod diagnostic;
 pub mod export;
 pub mod guard;
 pub mod session;
+pub mod stops;
 pub mod suite;
 mod units;
 

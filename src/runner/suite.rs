@@ -18,7 +18,14 @@ pub struct CaseResult {
     pub nook: usize,
     pub skip: usize,
     pub seconds: f64,
+    /// The located error message the run stopped on.
     pub error: Option<String>,
+    /// Its kind (`Unsupported`, `Catalog`, ...), command and message without location.
+    pub kind: Option<String>,
+    pub command: Option<String>,
+    pub message: Option<String>,
+    /// The command of the first NOOK check.
+    pub first_nook: Option<String>,
 }
 
 /// The machine-readable summary `aster run --summary FILE` writes.
@@ -33,6 +40,15 @@ pub fn summary_text(o: &Outcome) -> String {
     );
     if let Some(e) = &o.error {
         s.push_str(&format!("error={}\n", e.replace('\n', " ")));
+    }
+    if let Some(k) = o.error_kind {
+        s.push_str(&format!("kind={k:?}\n"));
+    }
+    if let Some(c) = &o.error_command {
+        s.push_str(&format!("command={c}\n"));
+    }
+    if let Some(m) = &o.error_message {
+        s.push_str(&format!("message={}\n", m.replace('\n', " ")));
     }
     for r in &o.records {
         let v = match r.ok {
@@ -55,12 +71,31 @@ fn parse_summary(name: &str, text: &str) -> CaseResult {
         skip: get("skip").and_then(|v| v.parse().ok()).unwrap_or(0),
         seconds: get("seconds").and_then(|v| v.parse().ok()).unwrap_or(0.0),
         error: get("error"),
+        kind: get("kind"),
+        command: get("command"),
+        message: get("message"),
+        first_nook: text
+            .lines()
+            .filter_map(|l| l.strip_prefix("check=NOOK\t"))
+            .find_map(|l| l.split('\t').next().map(str::to_string)),
     }
 }
 
 impl CaseResult {
     fn error(name: String, seconds: f64, msg: String) -> CaseResult {
-        CaseResult { name, diagnostic: Diagnostic::Error, ok: 0, nook: 0, skip: 0, seconds, error: Some(msg) }
+        CaseResult {
+            name,
+            diagnostic: Diagnostic::Error,
+            ok: 0,
+            nook: 0,
+            skip: 0,
+            seconds,
+            error: Some(msg.clone()),
+            kind: None,
+            command: None,
+            message: Some(msg),
+            first_nook: None,
+        }
     }
 }
 
@@ -116,29 +151,80 @@ fn run_one(exe: &Path, export: &Path, out: &Path) -> CaseResult {
     }
 }
 
-/// Run all .export files of `dir` with `jobs` workers; results in name order.
-pub fn run_suite(exe: &Path, dir: &Path, out: &Path, jobs: usize) -> std::io::Result<Vec<CaseResult>> {
+/// The .export files of `dir` in name order; with `only`, those whose case name it lists.
+pub fn exports_of(dir: &Path, only: Option<&[String]>) -> std::io::Result<Vec<PathBuf>> {
     let mut exports: Vec<PathBuf> = std::fs::read_dir(dir)?
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().map(|x| x == "export").unwrap_or(false))
+        .filter(|p| {
+            only.is_none_or(|names| {
+                p.file_stem().and_then(|s| s.to_str()).is_some_and(|s| names.iter().any(|n| n == s))
+            })
+        })
         .collect();
     exports.sort();
+    Ok(exports)
+}
+
+/// The case names of a list file: the first word of each line, `#` comments and blank lines skipped
+/// (the format of `tests/passing.txt`).
+pub fn read_list(text: &str) -> Vec<String> {
+    text.lines()
+        .map(|l| l.split('#').next().unwrap_or(""))
+        .filter_map(|l| l.split_whitespace().next())
+        .map(str::to_string)
+        .collect()
+}
+
+/// Run `exports` with `jobs` workers, with a progress bar on the terminal when `progress`; results
+/// in name order.
+pub fn run_suite(
+    exe: &Path,
+    exports: &[PathBuf],
+    out: &Path,
+    jobs: usize,
+    progress: bool,
+) -> std::io::Result<Vec<CaseResult>> {
     std::fs::create_dir_all(out)?;
-    let queue = Arc::new(Mutex::new(exports.clone()));
+    // Longest names last: the workers pop from the end, in name order.
+    let mut queue: Vec<PathBuf> = exports.to_vec();
+    queue.reverse();
+    let queue = Arc::new(Mutex::new(queue));
     let results = Arc::new(Mutex::new(Vec::new()));
+    let bar = if progress {
+        indicatif::ProgressBar::with_draw_target(
+            Some(exports.len() as u64),
+            indicatif::ProgressDrawTarget::stderr_with_hz(4),
+        )
+    } else {
+        indicatif::ProgressBar::hidden()
+    };
+    if let Ok(style) =
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} cases, {elapsed} ({eta} left) {msg}")
+    {
+        bar.set_style(style);
+    }
+    let passed = Arc::new(std::sync::atomic::AtomicUsize::new(0));
     let mut handles = Vec::new();
     for _ in 0..jobs.max(1) {
         let (q, r, exe, out) = (queue.clone(), results.clone(), exe.to_path_buf(), out.to_path_buf());
+        let (bar, passed) = (bar.clone(), passed.clone());
         handles.push(std::thread::spawn(move || loop {
             let next = q.lock().unwrap().pop();
             let Some(e) = next else { break };
             let res = run_one(&exe, &e, &out);
+            if res.diagnostic == Diagnostic::Ok {
+                passed.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            }
+            bar.set_message(format!("{} OK, last {}", passed.load(std::sync::atomic::Ordering::Relaxed), res.name));
+            bar.inc(1);
             r.lock().unwrap().push(res);
         }));
     }
     for h in handles {
         let _ = h.join();
     }
+    bar.finish_and_clear();
     let mut v = Arc::try_unwrap(results).map(|m| m.into_inner().unwrap()).unwrap_or_default();
     v.sort_by(|a, b| a.name.cmp(&b.name));
     Ok(v)
@@ -159,6 +245,16 @@ pub fn table(results: &[CaseResult]) -> String {
     }
     let ok = results.iter().filter(|r| r.diagnostic == Diagnostic::Ok).count();
     s.push_str(&format!("{} cases: {ok} OK, {} not OK\n", results.len(), results.len() - ok));
+    s
+}
+
+/// The cases that passed (OK), each with its number of OK check lines, in the format of
+/// tests/corpus_passing.txt.
+pub fn passing_list(results: &[CaseResult]) -> String {
+    let mut s = String::from("# cases that passed (DIAGNOSTIC JOB : OK) and their number of OK check lines\n");
+    for r in results.iter().filter(|r| r.diagnostic == Diagnostic::Ok) {
+        s.push_str(&format!("{:<10} {}\n", r.name, r.ok));
+    }
     s
 }
 
