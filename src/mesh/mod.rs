@@ -195,6 +195,19 @@ impl TextFormat {
     }
 }
 
+/// The entity that a name of Code_Aster 2025's numbering designates: since version 17 it no longer keeps
+/// the names a mesh file gives its entities and calls node k `N<k>` and cell k `M<k>` (1-based), while
+/// 2020-era files name them as their mesh file does. `name` read that way (`prefix` 'N' or 'M'), among
+/// `count` entities; the stages try it only where no entity bears the name itself.
+pub fn numbered(name: &str, prefix: char, count: usize) -> Option<usize> {
+    let digits = name.strip_prefix(prefix)?;
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) || digits.starts_with('0') {
+        return None;
+    }
+    let k: usize = digits.parse().ok()?;
+    (1..=count).contains(&k).then(|| k - 1)
+}
+
 /// A mesh. Nodes and cells are numbered from 0 in storage; their names
 /// (N1, M1, ...) are what users see.
 #[derive(Debug, Clone, Default)]
@@ -282,5 +295,19 @@ impl Mesh {
             let _ = writeln!(s, "  bounding box: {}", parts.join(", "));
         }
         s
+    }
+}
+
+#[cfg(test)]
+mod numbered_tests {
+    use super::numbered;
+
+    #[test]
+    fn numbered_names_are_those_of_code_aster_2025() {
+        assert_eq!(numbered("M5", 'M', 5), Some(4));
+        assert_eq!(numbered("N1", 'N', 3), Some(0));
+        for bad in ["M6", "M0", "M05", "M", "MA5", "N5"] {
+            assert_eq!(numbered(bad, 'M', 5), None, "{bad}");
+        }
     }
 }

@@ -1,5 +1,6 @@
 //! Selections shared by the stages: mesh entities of an occurrence (TOUT, GROUP_MA, MAILLE, GROUP_NO,
-//! NOEUD and their SANS_ forms).
+//! NOEUD and their SANS_ forms). A MAILLE or NOEUD name no entity bears is read as Code_Aster 2025 numbers
+//! its entities (`M<k>`, `N<k>`: `mesh::numbered`).
 
 use crate::catalog::args::Args;
 use crate::concepts::table::{Cell, Table};
@@ -23,11 +24,8 @@ pub fn select_cells(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usiz
     if !names.is_empty() {
         let index: HashMap<&str, usize> = mesh.cell_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
         for n in names {
-            cells.push(
-                *index
-                    .get(n.as_str())
-                    .ok_or_else(|| occ.err("MAILLE", format!("cell '{n}' is not in mesh {mesh_name}")))?,
-            );
+            let c = index.get(n.as_str()).copied().or_else(|| crate::mesh::numbered(&n, 'M', mesh.cells.len()));
+            cells.push(c.ok_or_else(|| occ.err("MAILLE", format!("cell '{n}' is not in mesh {mesh_name}")))?);
         }
     }
     for g in occ.texts_if_declared("SANS_GROUP_MA") {
@@ -61,11 +59,8 @@ pub fn select_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usiz
     if !names.is_empty() {
         let index: HashMap<&str, usize> = mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
         for n in names {
-            nodes.push(
-                *index
-                    .get(n.as_str())
-                    .ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {mesh_name}")))?,
-            );
+            let k = index.get(n.as_str()).copied().or_else(|| crate::mesh::numbered(&n, 'N', mesh.coords.len()));
+            nodes.push(k.ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {mesh_name}")))?);
         }
     }
     for g in occ.texts_if_declared("SANS_GROUP_NO") {

@@ -125,7 +125,8 @@ impl Work {
         let idx = self
             .node_index
             .get_or_insert_with(|| mesh.node_names.iter().enumerate().map(|(i, n)| (n.clone(), i)).collect());
-        idx.get(name).copied().ok_or_else(|| occ.err(kw, format!("node '{name}' is not in mesh {}", self.label)))
+        let k = idx.get(name).copied().or_else(|| crate::mesh::numbered(name, 'N', mesh.nnodes()));
+        k.ok_or_else(|| occ.err(kw, format!("node '{name}' is not in mesh {}", self.label)))
     }
 
     fn cell(&mut self, occ: &Args, kw: &str, name: &str) -> Result<usize> {
@@ -133,7 +134,8 @@ impl Work {
         let idx = self
             .cell_index
             .get_or_insert_with(|| mesh.cell_names.iter().enumerate().map(|(i, n)| (n.clone(), i)).collect());
-        idx.get(name).copied().ok_or_else(|| occ.err(kw, format!("cell '{name}' is not in mesh {}", self.label)))
+        let c = idx.get(name).copied().or_else(|| crate::mesh::numbered(name, 'M', mesh.ncells()));
+        c.ok_or_else(|| occ.err(kw, format!("cell '{name}' is not in mesh {}", self.label)))
     }
 
     fn cell_group(&self, occ: &Args, kw: &str, name: &str) -> Result<&Vec<usize>> {

@@ -483,3 +483,27 @@ fn veri_mail_warns_and_stops_as_code_aster() {
     run_ok(&dir, "skipped", &comm(", VERI_MAIL=_F(VERIF='NON')"), &[(20, &path)]);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A command file of Code_Aster 2025 names cells and nodes by their number (`M2`, `N3`) whatever names
+/// the mesh file gave them (erreu13a.mail's GAUCHE, NO3): such a name is read as a number where no
+/// entity bears it, while a name the mesh has keeps designating its entity.
+#[test]
+fn numbered_names_designate_entities_as_in_code_aster_2025() {
+    let dir = scratch!("numbered");
+    let mail = "COOR_2D\nNO1 0. 0.\nNO2 1. 0.\nNO3 1. 1.\nM1 0. 1.\nFINSF\n\
+                SEG2\nBAS NO1 NO2\nDROITE NO2 NO3\nM1 NO3 M1\nFINSF\nFIN\n";
+    let path = dir.join("m.mail");
+    std::fs::write(&path, mail).unwrap();
+    let comm = "DEBUT()\nM = LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20)\n\
+                M = DEFI_GROUP(reuse=M, MAILLAGE=M, CREA_GROUP_MA=(_F(NOM='G2', MAILLE='M2'), _F(NOM='G1', MAILLE='M1')),\n\
+                CREA_GROUP_NO=_F(NOM='P', NOEUD=('N3', 'M1')))\n\
+                IMPR_RESU(FORMAT='MED', UNITE=80, RESU=_F(MAILLAGE=M))\nFIN()\n";
+    let med_out = dir.join("out.med");
+    run_ok(&dir, "numbered", comm, &[(20, &path), (80, &med_out)]);
+    let m = med::read_mesh(&med_out, None).unwrap();
+    // M2 is the second cell (DROITE); M1 is the cell named M1 (the third), not the first.
+    assert_eq!(m.cell_groups["G2"], [1]);
+    assert_eq!(m.cell_groups["G1"], [2]);
+    assert_eq!(names(&m, &m.node_groups["P"]), ["NO3", "M1"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
