@@ -136,6 +136,12 @@ enum Cmd {
         /// Print docs/SUPPORTED.md.
         #[arg(long)]
         markdown: bool,
+        /// Print the schema of command NAME (the format of src/catalog/generated.rs).
+        #[arg(long, value_name = "NAME", conflicts_with = "markdown")]
+        schema: Option<String>,
+        /// With --schema: the hand-written schema of the command's stage, not the checked one.
+        #[arg(long, requires = "schema")]
+        hand_written: bool,
     },
 }
 
@@ -564,9 +570,18 @@ fn main() -> ExitCode {
         Cmd::Study { case, knobs, meshes, units, jobs, out, errors, curves, time_limit, repeat, title, quiet } => {
             study_command(case, knobs, meshes, units, jobs, out, (errors, curves), (time_limit, repeat), title, quiet)
         }
-        Cmd::Catalog { markdown } => {
+        Cmd::Catalog { markdown, schema, hand_written } => {
             let cat = catalogue();
-            if markdown {
+            if let Some(name) = schema {
+                let found = if hand_written { cat.hand_written(&name) } else { cat.get(&name) };
+                match found {
+                    Some(c) => print!("{}", aster::catalog::generated::write(c)),
+                    None => {
+                        eprintln!("aster: unknown command '{name}'");
+                        return ExitCode::from(2);
+                    }
+                }
+            } else if markdown {
                 print!("{}", cat.markdown(&|n| aster::stages::stage(n).is_some()));
             } else {
                 for c in cat.commands() {

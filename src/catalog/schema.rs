@@ -26,6 +26,54 @@ pub enum Ty {
     Co(&'static [ConceptKind]),
     /// A Python callable (functions handed to FORMULE, ...).
     Callable,
+    /// Any value, unchecked (Code_Aster's `not_checked`).
+    Any,
+    /// `CO('name')`: a new concept, of one of these types, that the command creates under that name
+    /// (an existing concept of any type is accepted too, as in Code_Aster).
+    NewConcept(&'static [ConceptKind]),
+}
+
+/// A check on all the values of a simple keyword (Code_Aster's validators).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Check {
+    /// All values differ.
+    NoRepeat,
+    /// Values in increasing (`false`) or decreasing (`true`) order, equal neighbours allowed.
+    Ordered(bool),
+    /// Every text has between `min` and `max` characters.
+    Len(usize, usize),
+    /// A condition on the set of (text) values.
+    Values(ValCheck),
+}
+
+/// A condition on the set of values of a keyword (AFFE_CARA_ELEM's CARA lists, ...).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ValCheck {
+    /// Every one of these values is given.
+    HasAll(Vec<Lit>),
+    /// All or none of these values are given.
+    Together(Vec<Lit>),
+    /// None of these values is given.
+    HasNone(Vec<Lit>),
+    /// At most one (distinct) value starts with this prefix.
+    OnePrefix(&'static str),
+    And(Vec<ValCheck>),
+    Or(Vec<ValCheck>),
+}
+
+impl std::fmt::Display for ValCheck {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let l = |v: &[Lit]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(", ");
+        let j = |v: &[ValCheck], sep: &str| v.iter().map(|x| format!("({x})")).collect::<Vec<_>>().join(sep);
+        match self {
+            ValCheck::HasAll(v) => write!(f, "all of {} given", l(v)),
+            ValCheck::Together(v) => write!(f, "all or none of {}", l(v)),
+            ValCheck::HasNone(v) => write!(f, "none of {}", l(v)),
+            ValCheck::OnePrefix(p) => write!(f, "at most one value starting with '{p}'"),
+            ValCheck::And(v) => write!(f, "{}", j(v, " and ")),
+            ValCheck::Or(v) => write!(f, "{}", j(v, " or ")),
+        }
+    }
 }
 
 /// A literal used for defaults, allowed values and conditions.
@@ -33,6 +81,7 @@ pub enum Ty {
 pub enum Lit {
     I(i64),
     R(f64),
+    C(f64, f64),
     T(&'static str),
 }
 
@@ -62,6 +111,7 @@ impl std::fmt::Display for Lit {
         match self {
             Lit::I(i) => write!(f, "{i}"),
             Lit::R(r) => write!(f, "{}", crate::text::float_repr(*r)),
+            Lit::C(a, b) => write!(f, "({}+{}j)", crate::text::float_repr(*a), crate::text::float_repr(*b)),
             Lit::T(t) => write!(f, "'{t}'"),
         }
     }
@@ -88,6 +138,10 @@ pub struct Simp {
     pub allowed: Option<Vec<Lit>>,
     pub val_min: Option<f64>,
     pub val_max: Option<f64>,
+    /// The bounds exclude their value.
+    pub min_open: bool,
+    pub max_open: bool,
+    pub checks: Vec<Check>,
 }
 
 /// Status of a factor keyword: 'd' means one default occurrence is created.
@@ -139,18 +193,64 @@ impl From<Bloc> for Entry {
 }
 
 /// The condition of a block, on the values of keywords of the same level
-/// (then of enclosing levels).
+/// (then of enclosing levels). A condition on an absent keyword is false, but for `Absent`.
 #[derive(Debug, Clone)]
 pub enum Cond {
-    /// The keyword's (first) value equals the literal.
+    /// One of the keyword's values equals the literal.
     Eq(&'static str, Lit),
-    /// The keyword's (first) value is one of the literals.
+    /// One of the keyword's values is one of the literals.
     In(&'static str, Vec<Lit>),
     /// The keyword is present (given or defaulted).
     Present(&'static str),
     Absent(&'static str),
     And(Vec<Cond>),
     Or(Vec<Cond>),
+    Not(Box<Cond>),
+    True,
+    False,
+    /// The keyword's (first) concept is of one of these types (or a subtype).
+    Type(&'static str, &'static [ConceptKind]),
+    /// The keyword's (first) text value starts with the prefix.
+    Prefix(&'static str, &'static str),
+    /// The keyword's (single) value compared with a number: `value < x`, `value > x`.
+    Less(&'static str, f64),
+    Greater(&'static str, f64),
+    /// The number of values of the keyword compared with `n`.
+    Count(&'static str, CountOp, usize),
+    /// `abs(first value) < x`.
+    AbsLess(&'static str, f64),
+    /// The first two text values are equal from character `n` on.
+    SameTail(&'static str, usize),
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum CountOp {
+    Eq,
+    Lt,
+    Le,
+    Gt,
+    Ge,
+}
+
+impl CountOp {
+    pub fn holds(self, a: usize, b: usize) -> bool {
+        match self {
+            CountOp::Eq => a == b,
+            CountOp::Lt => a < b,
+            CountOp::Le => a <= b,
+            CountOp::Gt => a > b,
+            CountOp::Ge => a >= b,
+        }
+    }
+    pub fn symbol(self) -> &'static str {
+        match self {
+            CountOp::Eq => "==",
+            CountOp::Lt => "<",
+            CountOp::Le => "<=",
+            CountOp::Gt => ">",
+            CountOp::Ge => ">=",
+        }
+    }
 }
 
 #[derive(Debug, Clone)]
@@ -167,6 +267,27 @@ pub enum Rule {
     PresentPresent(&'static str, Vec<&'static str>),
     /// If the first is present, none of the others may be.
     PresentAbsent(&'static str, Vec<&'static str>),
+    /// At least one keyword at this level (defaults included).
+    NotEmpty,
+    /// When none of the rule's keywords is given, these defaults are inserted before the rule is
+    /// checked (Code_Aster's `UN_PARMI(..., TOUT='OUI')`).
+    WithDefaults(Box<Rule>, Vec<(&'static str, Lit)>),
+}
+
+impl Rule {
+    /// The keywords the rule names.
+    pub fn keywords(&self) -> Vec<&'static str> {
+        match self {
+            Rule::UnParmi(k) | Rule::AuMoinsUn(k) | Rule::Exclus(k) | Rule::Ensemble(k) => k.clone(),
+            Rule::PresentPresent(a, k) | Rule::PresentAbsent(a, k) => {
+                let mut v = vec![*a];
+                v.extend(k);
+                v
+            }
+            Rule::NotEmpty => Vec::new(),
+            Rule::WithDefaults(r, _) => r.keywords(),
+        }
+    }
 }
 
 impl std::fmt::Display for Rule {
@@ -179,6 +300,11 @@ impl std::fmt::Display for Rule {
             Rule::Ensemble(k) => write!(f, "all or none of {}", j(k)),
             Rule::PresentPresent(a, k) => write!(f, "{a} requires {}", j(k)),
             Rule::PresentAbsent(a, k) => write!(f, "{a} excludes {}", j(k)),
+            Rule::NotEmpty => write!(f, "at least one keyword"),
+            Rule::WithDefaults(r, d) => {
+                let d: Vec<String> = d.iter().map(|(k, v)| format!("{k}={v}")).collect();
+                write!(f, "{r} (when none is given: {})", d.join(", "))
+            }
         }
     }
 }
@@ -194,6 +320,18 @@ impl std::fmt::Display for Cond {
             Cond::Absent(k) => write!(f, "{k} absent"),
             Cond::And(cs) => write!(f, "{}", cs.iter().map(|c| format!("({c})")).collect::<Vec<_>>().join(" and ")),
             Cond::Or(cs) => write!(f, "{}", cs.iter().map(|c| format!("({c})")).collect::<Vec<_>>().join(" or ")),
+            Cond::Not(c) => write!(f, "not ({c})"),
+            Cond::True => write!(f, "always"),
+            Cond::False => write!(f, "never"),
+            Cond::Type(k, kinds) => {
+                write!(f, "{k} is a {}", kinds.iter().map(|k| k.aster_name()).collect::<Vec<_>>().join(" or "))
+            }
+            Cond::Prefix(k, p) => write!(f, "{k} starts with '{p}'"),
+            Cond::Less(k, x) => write!(f, "{k} < {}", crate::text::float_repr(*x)),
+            Cond::Greater(k, x) => write!(f, "{k} > {}", crate::text::float_repr(*x)),
+            Cond::Count(k, op, n) => write!(f, "number of values of {k} {} {n}", op.symbol()),
+            Cond::AbsLess(k, x) => write!(f, "|{k}| < {}", crate::text::float_repr(*x)),
+            Cond::SameTail(k, n) => write!(f, "the first two values of {k} agree from character {n} on"),
         }
     }
 }
@@ -208,6 +346,21 @@ pub enum Produces {
     /// A Python integer, not a concept (DEFI_FICHIER's free unit), which the stage sets in
     /// `Ctx::int_result`; nothing when it sets none.
     Int,
+    /// The type depends on the arguments, as a list of cases (first match wins); when no case
+    /// matches, one of `one_of`, not known without computing.
+    Cases {
+        one_of: Vec<ConceptKind>,
+        cases: Vec<(Cond, Outcome)>,
+    },
+}
+
+/// What a case of [`Produces::Cases`] gives.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Outcome {
+    Kind(ConceptKind),
+    /// The type of the concept of a keyword (`FACT/KW`: in the first occurrence of FACT).
+    TypeOf(&'static str),
+    Nothing,
 }
 
 impl std::fmt::Debug for Produces {
@@ -217,6 +370,7 @@ impl std::fmt::Debug for Produces {
             Produces::Fixed(k) => write!(f, "Fixed({k})"),
             Produces::Dynamic(_) => write!(f, "Dynamic"),
             Produces::Int => write!(f, "Int"),
+            Produces::Cases { one_of, cases } => write!(f, "Cases({one_of:?}, {} cases)", cases.len()),
         }
     }
 }
@@ -254,6 +408,9 @@ pub fn simp(name: &'static str) -> Simp {
         allowed: None,
         val_min: None,
         val_max: None,
+        min_open: false,
+        max_open: false,
+        checks: Vec::new(),
     }
 }
 

@@ -8,6 +8,7 @@
 //! the shared container.
 
 pub mod function;
+mod kind;
 pub mod model;
 pub mod result;
 pub mod table;
@@ -20,67 +21,47 @@ use std::rc::Rc;
 pub use function::{Formula, Function, Interp as Interpolation, Nappe, Prol};
 pub use table::{Cell, Table};
 
-/// The concept types, named as in Code_Aster's catalogue.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum ConceptKind {
-    Maillage,
-    Modele,
-    Mater,
-    ChamMater,
-    CharMeca,
-    CharCineMeca,
-    CharCineTher,
-    CharTher,
-    CharContact,
-    Fonction,
-    FonctionC,
-    Nappe,
-    Formule,
-    Table,
-    TableContainer,
-    ListR8,
-    ListIs,
-    ListInst,
-    EvolElas,
-    EvolNoli,
-    EvolTher,
-    FissXfem,
-    ChamNo,
-    ChamElem,
-    Carte,
-}
+pub use kind::ConceptKind;
 
 impl ConceptKind {
     /// The Code_Aster type name, as users see it in messages.
     pub fn aster_name(self) -> &'static str {
-        use ConceptKind::*;
-        match self {
-            Maillage => "maillage_sdaster",
-            Modele => "modele_sdaster",
-            Mater => "mater_sdaster",
-            ChamMater => "cham_mater",
-            CharMeca => "char_meca",
-            CharCineMeca => "char_cine_meca",
-            CharCineTher => "char_cine_ther",
-            CharTher => "char_ther",
-            CharContact => "char_contact",
-            Fonction => "fonction_sdaster",
-            FonctionC => "fonction_c",
-            Nappe => "nappe_sdaster",
-            Formule => "formule",
-            Table => "table_sdaster",
-            TableContainer => "table_container",
-            ListR8 => "listr8_sdaster",
-            ListIs => "listis_sdaster",
-            ListInst => "list_inst",
-            EvolElas => "evol_elas",
-            EvolNoli => "evol_noli",
-            EvolTher => "evol_ther",
-            FissXfem => "fiss_xfem",
-            ChamNo => "cham_no_sdaster",
-            ChamElem => "cham_elem",
-            Carte => "carte_sdaster",
+        kind::KINDS[self as usize].1
+    }
+
+    /// The type this one specialises (`cham_no_sdaster` → `cham_gd_sdaster`); None at the root.
+    pub fn parent(self) -> Option<ConceptKind> {
+        kind::KINDS[self as usize].2
+    }
+
+    /// Is a concept of this type accepted where `other` is expected (the same type or a subtype)?
+    pub fn is_a(self, other: ConceptKind) -> bool {
+        let mut k = Some(self);
+        while let Some(x) = k {
+            if x == other {
+                return true;
+            }
+            k = x.parent();
         }
+        false
+    }
+
+    /// The kind named `name` in Code_Aster's catalogue.
+    pub fn from_aster_name(name: &str) -> Option<ConceptKind> {
+        kind::KINDS.iter().find(|(_, n, _)| *n == name).map(|(k, _, _)| *k)
+    }
+
+    /// The most specific type of which every one of `kinds` is a subtype.
+    pub fn common_ancestor(kinds: &[ConceptKind]) -> ConceptKind {
+        let Some(&first) = kinds.first() else { return ConceptKind::DataStructure };
+        let mut k = Some(first);
+        while let Some(x) = k {
+            if kinds.iter().all(|o| o.is_a(x)) {
+                return x;
+            }
+            k = x.parent();
+        }
+        ConceptKind::DataStructure
     }
 }
 
@@ -135,6 +116,9 @@ pub enum ConceptData {
 #[derive(Debug)]
 pub struct Concept {
     kind: ConceptKind,
+    /// `aster check` only: the types a result may have when the catalogue cannot tell which one
+    /// without computing (`kind` is then their common ancestor); empty otherwise.
+    alternatives: Vec<ConceptKind>,
     name: RefCell<String>,
     data: RefCell<ConceptData>,
 }
@@ -143,7 +127,28 @@ pub type ConceptRef = Rc<Concept>;
 
 impl Concept {
     pub fn new(kind: ConceptKind, data: ConceptData) -> ConceptRef {
-        Rc::new(Concept { kind, name: RefCell::new(String::new()), data: RefCell::new(data) })
+        Rc::new(Concept { kind, alternatives: Vec::new(), name: RefCell::new(String::new()), data: RefCell::new(data) })
+    }
+    /// A placeholder (`aster check`) for a result whose type is one of `kinds`, not known without
+    /// computing.
+    pub fn pending_one_of(kinds: &[ConceptKind]) -> ConceptRef {
+        let kind = ConceptKind::common_ancestor(kinds);
+        let alternatives = if kinds.len() > 1 { kinds.to_vec() } else { Vec::new() };
+        Rc::new(Concept {
+            kind,
+            alternatives,
+            name: RefCell::new(String::new()),
+            data: RefCell::new(ConceptData::Pending),
+        })
+    }
+    /// Can this concept be used where a `k` is expected: its type is `k` or a subtype, or (a
+    /// placeholder of uncertain type) one of the types it may have is.
+    pub fn may_be(&self, k: ConceptKind) -> bool {
+        self.kind.is_a(k) || self.alternatives.iter().any(|a| a.is_a(k))
+    }
+    /// The types a placeholder of uncertain type may have (empty when the type is known).
+    pub fn alternatives(&self) -> &[ConceptKind] {
+        &self.alternatives
     }
     pub fn kind(&self) -> ConceptKind {
         self.kind

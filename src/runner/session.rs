@@ -5,6 +5,7 @@
 use super::export::Dir;
 use crate::catalog::args::take_undeclared_lookups;
 use crate::catalog::schema::Produces;
+use crate::catalog::validate::Produced;
 use crate::catalog::{catalogue, validate};
 use crate::concepts::{Concept, ConceptData};
 use crate::diag::{Error, Result};
@@ -104,19 +105,49 @@ impl Session {
     }
 
     fn run_command(&mut self, name: &'static str, kwargs: Vec<KwArg>, span: Span) -> Result<Value> {
-        let cmd = catalogue().get(name).expect("host only calls catalogue commands");
-        let validated = validate::validate(cmd, kwargs, span)?;
+        let cat = catalogue();
+        let cmd = cat.get(name).expect("host only calls catalogue commands");
+        let hand = cat.hand_written(name);
+        // A run validates a second time against the stage's own schema (below): keep the keywords.
+        let kept = hand.is_some().then(|| kwargs.clone());
+        let (cmd, validated) = match validate::validate(cmd, kwargs, span) {
+            Ok(v) => (cmd, v),
+            // Our schema also takes spellings of older Code_Aster versions that 2025's dropped
+            // (DEFI_CONTACT's XFEM zones, ITER_CONT_MAXI): a call it accepts is valid.
+            Err(e) => match (hand, &kept) {
+                (Some(h), Some(kw)) => match validate::validate(h, kw.clone(), span) {
+                    Ok(v) => (h, v),
+                    Err(_) => return Err(e),
+                },
+                _ => return Err(e),
+            },
+        };
+        let kept = kept.filter(|_| self.mode == Mode::Run);
+        let mut produced = validate::produced(cmd, &validated.args).map_err(|e| e.at(span).in_command(name))?;
+        if let (Produced::OneOf(_), Some(h)) = (&produced, hand) {
+            // Code_Aster's cases could not tell; our own rule may.
+            if let Ok(p @ Produced::Kind(_)) = validate::produced(h, &validated.args) {
+                produced = p;
+            }
+        }
+        let validated = match (kept, hand) {
+            (Some(kwargs), Some(h)) => {
+                let v = validate::validate_supported(h, kwargs, span)?;
+                produced = validate::produced(h, &v.args).map_err(|e| e.at(span).in_command(name))?;
+                v
+            }
+            _ => validated,
+        };
         let args = validated.args;
         // `CMD(reuse=X, ...)` modifies X in place and returns it: `Y = CMD(reuse=X, ...)` makes Y another
         // name of X, as in Code_Aster 2025, whose import drops `reuse` and whose reentrant commands
         // return the object they modify (wtnv122d: `MAILLAGE = MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, ...)`).
-        let kind = match &cmd.produces {
-            Produces::Nothing | Produces::Int => None,
-            Produces::Fixed(k) => Some(*k),
-            Produces::Dynamic(f) => Some(f(&args).map_err(|e| e.at(span).in_command(name))?),
+        let kind = match &produced {
+            Produced::Kind(k) => Some(*k),
+            _ => None,
         };
         if let (Some(r), Some(k)) = (&validated.reuse, kind) {
-            if r.kind() != k {
+            if !r.may_be(k) && !k.is_a(r.kind()) {
                 return Err(Error::catalog(format!("reuse={} is a {}, {name} produces a {k}", r.label(), r.kind()))
                     .at(span)
                     .in_command(name));
@@ -126,15 +157,21 @@ impl Session {
             self.finished = true;
         }
         if self.mode == Mode::Check {
-            if matches!(cmd.produces, Produces::Int) {
+            // A command that gives a Python integer (DEFI_FICHIER's free unit) gives 0 unrun.
+            if matches!(cmd.produces, Produces::Int) || hand.is_some_and(|h| matches!(h.produces, Produces::Int)) {
                 return Ok(Value::Int(0));
             }
-            return Ok(match kind {
-                Some(k) => match &validated.reuse {
-                    Some(r) => Value::Concept(r.clone()),
-                    None => Value::Concept(Concept::new(k, ConceptData::Pending)),
-                },
-                None => Value::None,
+            // The concepts named by CO('name') come into being under their names.
+            for (co, kinds) in &validated.new_concepts {
+                let c = Concept::pending_one_of(kinds);
+                c.set_name(&co.name());
+                self.globals.borrow_mut().insert(co.name(), Value::Concept(c));
+            }
+            return Ok(match (&validated.reuse, produced) {
+                (_, Produced::Nothing) => Value::None,
+                (Some(r), _) => Value::Concept(r.clone()),
+                (None, Produced::Kind(k)) => Value::Concept(Concept::new(k, ConceptData::Pending)),
+                (None, Produced::OneOf(ks)) => Value::Concept(Concept::pending_one_of(&ks)),
             });
         }
         let Some(stage) = stages::stage(name) else {
@@ -153,7 +190,7 @@ impl Session {
         let data = stage(&mut ctx, &args).map_err(|e| e.at(span).in_command(name))?;
         let int_result = ctx.int_result;
         stages::all_keywords_used(name, &args).map_err(|e| e.at(span).in_command(name))?;
-        if matches!(cmd.produces, Produces::Int) {
+        if matches!(cmd.produces, Produces::Int) || hand.is_some_and(|h| matches!(h.produces, Produces::Int)) {
             return Ok(int_result.map(Value::Int).unwrap_or(Value::None));
         }
         match (kind, data) {

@@ -216,7 +216,7 @@ mod keyword_tests {
     fn call(cmd: &str, kw: Vec<(&str, Value)>) -> Args {
         let kwargs =
             kw.into_iter().map(|(n, v)| KwArg { name: n.to_string(), value: v, span: Span::default() }).collect();
-        let a = validate::validate(catalogue().get(cmd).unwrap(), kwargs, Span::default()).unwrap().args;
+        let a = validate::validate(catalogue().hand_written(cmd).unwrap(), kwargs, Span::default()).unwrap().args;
         a.reset_reads();
         take();
         a

@@ -67,7 +67,9 @@ mod tests {
     fn run(kw: Vec<(&str, Value)>) -> crate::diag::Result<ConceptData> {
         let kwargs =
             kw.into_iter().map(|(n, v)| KwArg { name: n.to_string(), value: v, span: Span::default() }).collect();
-        let a = validate::validate(catalogue().get("DEFI_LIST_INST").unwrap(), kwargs, Span::default()).unwrap().args;
+        let a = validate::validate(catalogue().hand_written("DEFI_LIST_INST").unwrap(), kwargs, Span::default())
+            .unwrap()
+            .args;
         super::time_list(&a).map(ConceptData::ListInst)
     }
 
