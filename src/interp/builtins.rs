@@ -41,6 +41,7 @@ const BUILTINS: &[&str] = &[
     "tuple",
     "zip",
     "_F",
+    "open",
 ];
 
 const MATH_FUNCS: &[&str] = &[
@@ -196,10 +197,11 @@ fn unsupported_module(module: &str) -> Error {
     }
 }
 
-pub fn import_module(module: &str) -> Result<Value> {
+/// The value `import MODULE [as ALIAS]` binds: the module itself with an alias, else its root.
+pub fn import_module(module: &str, alias: bool) -> Result<Value> {
     match module {
         "math" => Ok(Value::Module("math")),
-        m => Err(unsupported_module(m)),
+        m => super::modules::import(m, alias).ok_or_else(|| unsupported_module(m)),
     }
 }
 
@@ -214,9 +216,20 @@ pub fn from_import(module: &str, names: Option<&[(String, Option<String>)]>) -> 
                     .ok_or_else(|| Error::python(format!("ImportError: cannot import name '{n}' from 'math'")))
             })
             .collect(),
-        // The commands are in scope already; the import is accepted as a no-op.
-        ("code_aster.Commands", None) | ("code_aster.Cata.Commands", None) => Ok(Vec::new()),
-        (m, _) => Err(unsupported_module(m)),
+        // The commands are in scope already (through the host); CO comes with them.
+        ("code_aster.Cata.Commands", None) => Ok(Vec::new()),
+        (m, None) => super::modules::star_import(m).ok_or_else(|| unsupported_module(m)),
+        (m, Some(names)) => {
+            let mut out = Vec::new();
+            for (n, alias) in names {
+                let v = match super::modules::from_import(m, n) {
+                    Some(v) => v?,
+                    None => return Err(unsupported_module(m)),
+                };
+                out.push((alias.clone().unwrap_or_else(|| n.clone()), v));
+            }
+            Ok(out)
+        }
     }
 }
 
@@ -225,6 +238,24 @@ pub fn get_attr(obj: &Value, name: &str) -> Result<Value> {
         Value::Module("math") => {
             return math_member(name)
                 .ok_or_else(|| Error::python(format!("AttributeError: module 'math' has no attribute '{name}'")))
+        }
+        Value::Module(_) => return super::modules::get_attr(obj, name),
+        Value::Instance(i) => {
+            if let Some(v) = i.attrs.borrow().get(name) {
+                return Ok(v.clone());
+            }
+            return match i.class.ns.borrow().get(name) {
+                Some(Value::Func(f)) => Ok(Value::BoundMethod(i.clone(), f.clone())),
+                Some(v) => Ok(v.clone()),
+                None => {
+                    Err(Error::python(format!("AttributeError: '{}' object has no attribute '{name}'", i.class.name)))
+                }
+            };
+        }
+        Value::Class(c) => {
+            return c.ns.borrow().get(name).cloned().ok_or_else(|| {
+                Error::python(format!("AttributeError: type object '{}' has no attribute '{name}'", c.name))
+            })
         }
         Value::Complex(a, b) => {
             return match name {
@@ -415,6 +446,24 @@ pub fn call_builtin(it: &mut Interp, name: &'static str, args: Vec<Value>, kw: V
     if let Some(m) = name.strip_prefix("math.") {
         no_kw(name, &kw)?;
         return math_call(m, &args);
+    }
+    if let Some(m) = name.strip_prefix("os.path.") {
+        no_kw(name, &kw)?;
+        return super::modules::call_os_path(m, &args);
+    }
+    if name == "CO" {
+        no_kw(name, &kw)?;
+        return super::modules::co(&args);
+    }
+    if name == "CA.disable_fpe" {
+        no_kw(name, &kw)?;
+        arity(name, &args, 0, 0)?;
+        return Ok(Value::Builtin(Builtin("CA.disable_fpe.context")));
+    }
+    if name == "open" {
+        return Err(Error::unsupported(
+            "open: reading or writing files outside the run's units is not supported by aster-rs",
+        ));
     }
     match name {
         "_F" => {

@@ -74,6 +74,11 @@ pub fn to_str(v: &Value) -> String {
         Value::Builtin(b) => format!("<built-in function {}>", b.0),
         Value::Method(_, m) => format!("<built-in method {m}>"),
         Value::Module(m) => format!("<module '{m}'>"),
+        Value::Class(c) => format!("<class '__main__.{}'>", c.name),
+        Value::Instance(i) => format!("<__main__.{} object>", i.class.name),
+        Value::BoundMethod(i, f) => {
+            format!("<bound method {}.{} of <__main__.{} object>>", i.class.name, f.def.name, i.class.name)
+        }
         Value::Command(c) => format!("<command {c}>"),
         Value::Concept(c) => c.label(),
     }

@@ -7,6 +7,7 @@
 mod builtins;
 pub mod fast;
 pub mod format;
+mod modules;
 mod ops;
 pub mod value;
 
@@ -17,6 +18,14 @@ use std::cell::{Cell, RefCell};
 use std::collections::{HashMap, HashSet};
 use std::rc::Rc;
 pub use value::{Builtin, Dict, Scope, Value};
+
+/// What Code_Aster's runner puts in a command file's namespace before it runs (`from math import *`,
+/// `CA`, `CO`), unless the file imports the commands itself (`modules::predefine`).
+pub fn predefine(globals: &Scope, src: &str) {
+    if modules::predefine(globals, src) {
+        globals.borrow_mut().extend(builtins::math_names());
+    }
+}
 
 /// A keyword argument of a command call, with its location.
 #[derive(Debug, Clone)]
@@ -367,9 +376,37 @@ impl<'h> Interp<'h> {
                 };
                 return Err(Error::python(format!("raised: {msg}")));
             }
+            StmtKind::With { items, body } => {
+                for (ctx, target) in items {
+                    let v = self.eval(ctx)?;
+                    let entered = context_enter(&v).map_err(|e| e.at(ctx.span))?;
+                    if let Some(t) = target {
+                        self.assign(t, entered)?;
+                    }
+                }
+                return self.exec_block(body);
+            }
+            StmtKind::Class(def) => {
+                let c = self.make_class(def)?;
+                self.store(&def.name, c);
+            }
+            StmtKind::Decorated { decorators, def } => {
+                let name = match &def.kind {
+                    StmtKind::Def(f) => f.name.clone(),
+                    StmtKind::Class(c) => c.name.clone(),
+                    _ => unreachable!("decorators decorate a def or a class"),
+                };
+                let decos: Vec<Value> = decorators.iter().map(|d| self.eval(d)).collect::<Result<_>>()?;
+                self.exec(def)?;
+                let mut v = self.lookup(&name, def.span)?;
+                for d in decos.iter().rev() {
+                    v = self.call(d, vec![v], Vec::new(), s.span)?;
+                }
+                self.store(&name, v);
+            }
             StmtKind::Import(names) => {
                 for (module, alias) in names {
-                    let m = builtins::import_module(module)?;
+                    let m = builtins::import_module(module, alias.is_some())?;
                     let bind = alias.clone().unwrap_or_else(|| module.split('.').next().unwrap().to_string());
                     self.store(&bind, m);
                 }
@@ -382,6 +419,37 @@ impl<'h> Interp<'h> {
             }
         }
         Ok(Flow::Normal)
+    }
+
+    /// Run a class body in its own namespace: the class's methods and attributes.
+    fn make_class(&mut self, def: &Rc<ClassDef>) -> Result<Value> {
+        for b in &def.bases {
+            let ok = matches!(&b.kind, ExprKind::Name(n) if n == "object");
+            if !ok {
+                return Err(Error::unsupported(format!(
+                    "class {}: inheritance from other classes is not supported (plain classes only)",
+                    def.name
+                ))
+                .at(b.span));
+            }
+        }
+        let ns: Scope = Rc::new(RefCell::new(HashMap::new()));
+        let enclosing = match self.frames.last() {
+            Some(f) => {
+                let mut c = vec![f.locals.clone()];
+                c.extend(f.enclosing.iter().cloned());
+                c
+            }
+            None => Vec::new(),
+        };
+        self.frames.push(Frame { locals: ns.clone(), enclosing, global_names: HashSet::new() });
+        let r = self.exec_block(&def.body);
+        self.frames.pop();
+        match r? {
+            Flow::Normal => {}
+            _ => return Err(Error::python("SyntaxError: 'return', 'break' or 'continue' in a class body").at(def.span)),
+        }
+        Ok(Value::Class(Rc::new(value::Class { name: def.name.clone(), ns })))
     }
 
     fn make_function(&mut self, def: &Rc<FuncDef>) -> Result<Value> {
@@ -467,7 +535,24 @@ impl<'h> Interp<'h> {
                 let i = self.eval(idx)?;
                 ops::set_item(&o, i, v).map_err(|e| e.at(target.span))
             }
-            ExprKind::Attr(..) => Err(Error::python("attribute assignment is not supported").at(target.span)),
+            ExprKind::Attr(obj, name) => {
+                let o = self.eval(obj)?;
+                match &o {
+                    Value::Instance(i) => {
+                        i.attrs.borrow_mut().insert(name.clone(), v);
+                        Ok(())
+                    }
+                    Value::Class(c) => {
+                        c.ns.borrow_mut().insert(name.clone(), v);
+                        Ok(())
+                    }
+                    o => Err(Error::python(format!(
+                        "AttributeError: cannot set attribute '{name}' of a '{}' object",
+                        o.type_name()
+                    ))
+                    .at(target.span)),
+                }
+            }
             _ => Err(Error::python("SyntaxError: cannot assign to expression").at(target.span)),
         }
     }
@@ -759,6 +844,9 @@ impl<'h> Interp<'h> {
             };
             return host.call_command(name, kw, span, target);
         }
+        if let Value::Builtin(Builtin(b @ ("CA.init" | "CA.close"))) = fv {
+            return self.ca_init_close(b, pos, kw, span);
+        }
         if let Value::Builtin(Builtin("print")) = fv {
             let opt = |name: &str| {
                 kw.iter().find(|k| k.name == name && !matches!(k.value, Value::None)).map(|k| format::to_str(&k.value))
@@ -777,6 +865,32 @@ impl<'h> Interp<'h> {
         self.call(&fv, pos, kw, span)
     }
 
+    /// `CA.init(OPTIONS..., debug=..., KEYWORDS...)` is DEBUT(KEYWORDS...) (POURSUITE with
+    /// "--continue"), `CA.close()` is FIN(): the new-style preamble of a command file.
+    fn ca_init_close(&mut self, name: &str, pos: Vec<Value>, mut kw: Vec<KwArg>, span: Span) -> Result<Value> {
+        let mut cmd = if name == "CA.init" { "DEBUT" } else { "FIN" };
+        for p in &pos {
+            match p.as_str() {
+                Some("--continue") if name == "CA.init" => cmd = "POURSUITE",
+                Some(o) if o.starts_with('-') && name == "CA.init" => {}
+                _ => return Err(Error::python(format!(
+                    "TypeError: {name}() takes command-line options ('--test', ...) as positional arguments, got {}",
+                    format::repr(p)
+                ))
+                .at(span)),
+            }
+        }
+        // `debug=` is an option of the runner, not a keyword of DEBUT.
+        kw.retain(|k| k.name != "debug");
+        let Some(host) = self.host.as_mut() else {
+            return Err(Error::python(format!("{name}() cannot be called from inside a formula")));
+        };
+        let Some(cmd) = host.command(cmd) else {
+            return Err(Error::unsupported(format!("{name}(\"--continue\"): POURSUITE is not supported yet")).at(span));
+        };
+        host.call_command(cmd, kw, span, None)
+    }
+
     /// Call any Python callable.
     pub fn call(&mut self, f: &Value, pos: Vec<Value>, kw: Vec<(String, Value)>, span: Span) -> Result<Value> {
         match f {
@@ -784,6 +898,42 @@ impl<'h> Interp<'h> {
             Value::Builtin(b) => builtins::call_builtin(self, b.0, pos, kw),
             Value::Method(recv, name) => builtins::call_method(self, recv, name, pos, kw),
             Value::Concept(c) => call_concept(c, &pos),
+            Value::Class(c) => {
+                let obj = Rc::new(value::Instance { class: c.clone(), attrs: RefCell::new(HashMap::new()) });
+                let init = c.ns.borrow().get("__init__").cloned();
+                match init {
+                    Some(Value::Func(f)) => {
+                        let mut args = vec![Value::Instance(obj.clone())];
+                        args.extend(pos);
+                        let r = self.call_function(&f, args, kw, span)?;
+                        if !matches!(r, Value::None) {
+                            return Err(Error::python("TypeError: __init__() should return None"));
+                        }
+                    }
+                    Some(_) => return Err(Error::python("TypeError: __init__ is not a function")),
+                    None if !pos.is_empty() || !kw.is_empty() => {
+                        return Err(Error::python(format!("TypeError: {}() takes no arguments", c.name)))
+                    }
+                    None => {}
+                }
+                Ok(Value::Instance(obj))
+            }
+            Value::BoundMethod(obj, f) => {
+                let mut args = vec![Value::Instance(obj.clone())];
+                args.extend(pos);
+                self.call_function(f, args, kw, span)
+            }
+            Value::Instance(i) => {
+                let call = i.class.ns.borrow().get("__call__").cloned();
+                match call {
+                    Some(Value::Func(f)) => {
+                        let mut args = vec![f_self(i)];
+                        args.extend(pos);
+                        self.call_function(&f, args, kw, span)
+                    }
+                    _ => Err(Error::python(format!("TypeError: '{}' object is not callable", i.class.name))),
+                }
+            }
             Value::Command(name) => Err(Error::python(format!("command {name} cannot be called here"))),
             v => Err(Error::python(format!("TypeError: '{}' object is not callable", v.type_name()))),
         }
@@ -887,6 +1037,23 @@ impl<'h> Interp<'h> {
     }
 }
 
+fn f_self(i: &Rc<value::Instance>) -> Value {
+    Value::Instance(i.clone())
+}
+
+/// `with CTX [as NAME]:` — the value NAME is bound to. The only context managers are code_aster's
+/// `CA.disable_fpe()` (it changes how floating-point errors are trapped, which our arithmetic does not
+/// do: a no-op); files and the rest are refused by name.
+fn context_enter(v: &Value) -> Result<Value> {
+    match v {
+        Value::Builtin(Builtin("CA.disable_fpe.context")) => Ok(Value::None),
+        other => Err(Error::unsupported(format!(
+            "with: a context manager of type '{}' is not supported by aster-rs",
+            other.type_name()
+        ))),
+    }
+}
+
 /// Calling a concept: formulas and functions evaluate, as in Code_Aster
 /// (`F(0.5)`).
 fn call_concept(c: &ConceptRef, pos: &[Value]) -> Result<Value> {
@@ -938,14 +1105,22 @@ fn exception_class(e: &Error) -> Option<&str> {
 /// classes command files name.
 fn handler_matches(h: &crate::syntax::ast::Handler, class: &str) -> Result<bool> {
     let Some(types) = &h.types else { return Ok(true) };
+    // `CA.AsterError` (code_aster's exceptions) is named by its attribute.
+    fn class_name(e: &Expr) -> std::result::Result<&str, ()> {
+        match &e.kind {
+            ExprKind::Name(n) => Ok(n.as_str()),
+            ExprKind::Attr(m, n) if matches!(&m.kind, ExprKind::Name(x) if x == "CA" || x == "code_aster") => {
+                Ok(n.as_str())
+            }
+            _ => Err(()),
+        }
+    }
     let names: Vec<&str> = match &types.kind {
-        ExprKind::Name(n) => vec![n.as_str()],
+        ExprKind::Name(_) | ExprKind::Attr(..) => vec![class_name(types)
+            .map_err(|_| Error::unsupported("except: only exception class names are supported").at(h.span))?],
         ExprKind::Tuple(items) => items
             .iter()
-            .map(|i| match &i.kind {
-                ExprKind::Name(n) => Ok(n.as_str()),
-                _ => Err(()),
-            })
+            .map(class_name)
             .collect::<std::result::Result<_, _>>()
             .map_err(|_| Error::unsupported("except: only exception class names are supported").at(h.span))?,
         _ => return Err(Error::unsupported("except: only exception class names are supported").at(h.span)),

@@ -15,7 +15,52 @@ fn op_name(op: BinOp) -> &'static str {
         BinOp::FloorDiv => "//",
         BinOp::Mod => "%",
         BinOp::Pow => "**",
+        BinOp::BitOr => "|",
+        BinOp::BitXor => "^",
+        BinOp::BitAnd => "&",
+        BinOp::LShift => "<<",
+        BinOp::RShift => ">>",
     }
+}
+
+/// `&`, `|`, `^` of booleans (a boolean) or integers, `<<`, `>>` of integers.
+fn bitwise(op: BinOp, a: &Value, b: &Value) -> Result<Value> {
+    if let (Value::Bool(x), Value::Bool(y)) = (a, b) {
+        match op {
+            BinOp::BitAnd => return Ok(Value::Bool(*x & *y)),
+            BinOp::BitOr => return Ok(Value::Bool(*x | *y)),
+            BinOp::BitXor => return Ok(Value::Bool(*x ^ *y)),
+            _ => {}
+        }
+    }
+    let (Some(x), Some(y)) = (int_like(a), int_like(b)) else { return Err(type_err(op, a, b)) };
+    Ok(Value::Int(match op {
+        BinOp::BitAnd => x & y,
+        BinOp::BitOr => x | y,
+        BinOp::BitXor => x ^ y,
+        _ => {
+            if y < 0 {
+                return Err(Error::python("ValueError: negative shift count"));
+            }
+            if op == BinOp::RShift {
+                if y >= 64 {
+                    if x < 0 {
+                        -1
+                    } else {
+                        0
+                    }
+                } else {
+                    x >> y
+                }
+            } else if x == 0 {
+                0
+            } else if y >= 63 {
+                return Err(overflow());
+            } else {
+                i64::try_from((x as i128) << y).map_err(|_| overflow())?
+            }
+        }
+    }))
 }
 
 fn type_err(op: BinOp, a: &Value, b: &Value) -> Error {
@@ -74,10 +119,14 @@ pub fn binop(op: BinOp, a: &Value, b: &Value) -> Result<Value> {
                     Int(x.checked_pow(e).ok_or_else(overflow)?)
                 }
             }
+            BinOp::BitOr | BinOp::BitXor | BinOp::BitAnd | BinOp::LShift | BinOp::RShift => bitwise(op, a, b)?,
         });
     }
-    // Floats.
+    // Floats (no bit operators: `&`, `|`, `^` of booleans and integers only).
     if let (Some(x), Some(y)) = (num(a), num(b)) {
+        if matches!(op, BinOp::BitOr | BinOp::BitXor | BinOp::BitAnd | BinOp::LShift | BinOp::RShift) {
+            return Err(type_err(op, a, b));
+        }
         let r = float_binop(op, x, y)?;
         if r.is_infinite() && x.is_finite() && y.is_finite() {
             return Err(Error::python("OverflowError: numerical result out of range"));
@@ -90,6 +139,12 @@ pub fn binop(op: BinOp, a: &Value, b: &Value) -> Result<Value> {
 fn float_binop(op: BinOp, x: f64, y: f64) -> Result<f64> {
     {
         Ok(match op {
+            BinOp::BitOr | BinOp::BitXor | BinOp::BitAnd | BinOp::LShift | BinOp::RShift => {
+                return Err(Error::python(format!(
+                    "TypeError: unsupported operand type(s) for {}: 'float'",
+                    op_name(op)
+                )))
+            }
             BinOp::Add => x + y,
             BinOp::Sub => x - y,
             BinOp::Mul => x * y,
@@ -369,7 +424,7 @@ fn slice_indices(len: usize, start: &Value, stop: &Value, step: &Value) -> Resul
     Ok(out)
 }
 
-fn as_slice(idx: &Value) -> Option<(Value, Value, Value)> {
+pub(super) fn as_slice(idx: &Value) -> Option<(Value, Value, Value)> {
     if let Value::Tuple(t) = idx {
         if t.len() == 4 && matches!(t[0], Value::Builtin(Builtin("slice"))) {
             return Some((t[1].clone(), t[2].clone(), t[3].clone()));

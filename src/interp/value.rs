@@ -20,6 +20,20 @@ pub struct Function {
     pub closure: Vec<Scope>,
 }
 
+/// A plain class (`class NAME:`): its name and the namespace its body made (methods, attributes).
+#[derive(Debug)]
+pub struct Class {
+    pub name: String,
+    pub ns: Scope,
+}
+
+/// An object of a plain class, with its own attributes.
+#[derive(Debug)]
+pub struct Instance {
+    pub class: Rc<Class>,
+    pub attrs: RefCell<HashMap<String, Value>>,
+}
+
 /// Built-in callables, addressed by name.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Builtin(pub &'static str);
@@ -40,6 +54,10 @@ pub enum Value {
     /// A method bound to its receiver: `"a,b".split`, `lst.append`, ...
     Method(Box<Value>, &'static str),
     Module(&'static str),
+    Class(Rc<Class>),
+    Instance(Rc<Instance>),
+    /// A method of an object, bound to it: `obj.method`.
+    BoundMethod(Rc<Instance>, Rc<Function>),
     /// A Code_Aster command, called by the interpreter through the host.
     Command(&'static str),
     Concept(ConceptRef),
@@ -96,6 +114,9 @@ impl Value {
             Value::Func(_) => "function".into(),
             Value::Builtin(_) | Value::Method(..) => "builtin_function_or_method".into(),
             Value::Module(_) => "module".into(),
+            Value::Class(_) => "type".into(),
+            Value::Instance(i) => i.class.name.clone(),
+            Value::BoundMethod(..) => "method".into(),
             Value::Command(_) => "command".into(),
             Value::Concept(c) => c.kind().aster_name().into(),
         }
@@ -173,6 +194,8 @@ pub fn py_eq(a: &Value, b: &Value) -> bool {
         (Builtin(x), Builtin(y)) => x == y,
         (Command(x), Command(y)) => x == y,
         (Module(x), Module(y)) => x == y,
+        (Class(x), Class(y)) => std::rc::Rc::ptr_eq(x, y),
+        (Instance(x), Instance(y)) => std::rc::Rc::ptr_eq(x, y),
         _ => match (a.as_int(), b.as_int()) {
             (Some(x), Some(y)) => x == y,
             _ => match (a.as_f64(), b.as_f64()) {

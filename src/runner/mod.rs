@@ -234,6 +234,9 @@ fn run_text(
     };
     let globals = Rc::new(RefCell::new(HashMap::new()));
     let (first_file, first_src) = sources.first().cloned().unwrap_or_default();
+    // The runner's context (Code_Aster's predefined names), from what any of the command files imports.
+    let all: Vec<&str> = sources.iter().map(|(_, s)| s.as_str()).collect();
+    crate::interp::predefine(&globals, &all.join("\n"));
     let mut session = Session::new(Mode::Run, &first_file, &first_src, globals.clone(), work.0.clone());
     session.units = units.into_iter().map(|(u, p, d)| (u, (p, d))).collect();
     session.echo = opts.echo;
@@ -366,6 +369,7 @@ pub fn check_file(path: &Path) -> Result<usize, (String, ErrorKind)> {
             (format!("{file}:{l}:{c}: {}", e.message), ErrorKind::Syntax)
         })?;
     let globals = Rc::new(RefCell::new(HashMap::new()));
+    crate::interp::predefine(&globals, &src);
     let work = std::env::temp_dir();
     let mut session = Session::new(Mode::Check, &file, &src, globals.clone(), work);
     let at = Rc::new(Cell::new(Span::default()));

@@ -60,6 +60,18 @@ pub enum StmtKind {
         orelse: Vec<Stmt>,
         finalbody: Vec<Stmt>,
     },
+    /// `with EXPR [as TARGET], ...:`
+    With {
+        items: Vec<(Expr, Option<Expr>)>,
+        body: Vec<Stmt>,
+    },
+    /// `class NAME[(BASES)]:` — a plain class.
+    Class(Rc<ClassDef>),
+    /// `@DECORATOR` lines before a `def` or `class` (applied bottom-up to what it defines).
+    Decorated {
+        decorators: Vec<Expr>,
+        def: Box<Stmt>,
+    },
     /// `import a.b as c` — (module path, alias)
     Import(Vec<(String, Option<String>)>),
     /// `from m import *` (names = None) or `from m import a as b, ...`
@@ -73,6 +85,14 @@ pub enum StmtKind {
 pub struct FuncDef {
     pub name: String,
     pub params: Vec<Param>,
+    pub body: Vec<Stmt>,
+    pub span: Span,
+}
+
+#[derive(Debug)]
+pub struct ClassDef {
+    pub name: String,
+    pub bases: Vec<Expr>,
     pub body: Vec<Stmt>,
     pub span: Span,
 }
@@ -99,6 +119,11 @@ pub enum BinOp {
     FloorDiv,
     Mod,
     Pow,
+    BitOr,
+    BitXor,
+    BitAnd,
+    LShift,
+    RShift,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

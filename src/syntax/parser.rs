@@ -58,11 +58,11 @@ pub fn parse_expr(src: &str, base: usize) -> PResult<Expr> {
     })?;
     let p = pairs.next().unwrap().into_inner().next().unwrap();
     let mut e = testlist(p)?;
-    shift(&mut e, base);
+    shift_span(&mut e, base);
     Ok(e)
 }
 
-fn shift(e: &mut Expr, base: usize) {
+fn shift_span(e: &mut Expr, base: usize) {
     if base == 0 {
         return;
     }
@@ -162,6 +162,9 @@ fn stmt(p: Pair<Rule>, out: &mut Vec<Stmt>) -> PResult<()> {
         Rule::while_stmt => out.push(while_stmt(p)?),
         Rule::try_stmt => out.push(try_stmt(p)?),
         Rule::def_stmt => out.push(def_stmt(p)?),
+        Rule::with_stmt => out.push(with_stmt(p)?),
+        Rule::class_stmt => out.push(class_stmt(p)?),
+        Rule::decorated => out.push(decorated(p)?),
         r => unreachable!("statement rule {r:?}"),
     }
     Ok(())
@@ -312,6 +315,63 @@ fn def_stmt(p: Pair<Rule>) -> PResult<Stmt> {
     Ok(Stmt { kind: StmtKind::Def(def), span: sp })
 }
 
+fn with_stmt(p: Pair<Rule>) -> PResult<Stmt> {
+    let sp = span(&p);
+    let mut inner = p.into_inner();
+    inner.next(); // kw_with
+    let mut items = Vec::new();
+    for it in inner.next().unwrap().into_inner() {
+        let mut parts = it.into_inner();
+        let ctx = test(parts.next().unwrap())?;
+        let target = match parts.nth(1) {
+            Some(t) => Some(assignable(target(t)?)?),
+            None => None,
+        };
+        items.push((ctx, target));
+    }
+    let body = suite(inner.next().unwrap())?;
+    Ok(Stmt { kind: StmtKind::With { items, body }, span: sp })
+}
+
+fn class_stmt(p: Pair<Rule>) -> PResult<Stmt> {
+    let sp = span(&p);
+    let mut inner = p.into_inner();
+    inner.next(); // kw_class
+    let name = ident(inner.next().unwrap());
+    let mut bases = Vec::new();
+    let mut body = Vec::new();
+    for c in inner {
+        match c.as_rule() {
+            Rule::bases_x => {
+                for a in arglist(c.into_inner().next().unwrap())? {
+                    match a {
+                        Arg::Positional(e) => bases.push(e),
+                        _ => return err(sp.start, "class keywords (metaclass=...) are not supported"),
+                    }
+                }
+            }
+            Rule::suite => body = suite(c)?,
+            r => unreachable!("{r:?}"),
+        }
+    }
+    Ok(Stmt { kind: StmtKind::Class(Rc::new(ClassDef { name, bases, body, span: sp })), span: sp })
+}
+
+fn decorated(p: Pair<Rule>) -> PResult<Stmt> {
+    let sp = span(&p);
+    let mut decorators = Vec::new();
+    let mut def = None;
+    for c in p.into_inner() {
+        match c.as_rule() {
+            Rule::decorator => decorators.push(test(c.into_inner().next().unwrap().into_inner().next().unwrap())?),
+            Rule::def_stmt => def = Some(def_stmt(c)?),
+            Rule::class_stmt => def = Some(class_stmt(c)?),
+            r => unreachable!("{r:?}"),
+        }
+    }
+    Ok(Stmt { kind: StmtKind::Decorated { decorators, def: Box::new(def.unwrap()) }, span: sp })
+}
+
 fn small_stmt(p: Pair<Rule>) -> PResult<Stmt> {
     let sp = span(&p);
     let kind = match p.as_rule() {
@@ -405,6 +465,11 @@ fn expr_stmt(p: Pair<Rule>) -> PResult<StmtKind> {
             "//=" => BinOp::FloorDiv,
             "%=" => BinOp::Mod,
             "**=" => BinOp::Pow,
+            "|=" => BinOp::BitOr,
+            "&=" => BinOp::BitAnd,
+            "^=" => BinOp::BitXor,
+            "<<=" => BinOp::LShift,
+            ">>=" => BinOp::RShift,
             o => unreachable!("{o}"),
         };
         if matches!(target.kind, ExprKind::Tuple(_) | ExprKind::List(_)) {
@@ -572,7 +637,7 @@ fn not_test(p: Pair<Rule>) -> PResult<Expr> {
 fn comparison(p: Pair<Rule>) -> PResult<Expr> {
     let sp = span(&p);
     let mut inner = p.into_inner();
-    let first = arith(inner.next().unwrap())?;
+    let first = bor(inner.next().unwrap())?;
     let mut rest = Vec::new();
     while let Some(op) = inner.next() {
         let o = match op.as_str() {
@@ -587,7 +652,7 @@ fn comparison(p: Pair<Rule>) -> PResult<Expr> {
             s if s.starts_with("not") => CmpOp::NotIn,
             _ => CmpOp::IsNot,
         };
-        rest.push((o, arith(inner.next().unwrap())?));
+        rest.push((o, bor(inner.next().unwrap())?));
     }
     if rest.is_empty() {
         Ok(first)
@@ -597,15 +662,49 @@ fn comparison(p: Pair<Rule>) -> PResult<Expr> {
 }
 
 fn binop(s: &str) -> BinOp {
-    match s {
+    // A bit operator's rule (`"|" ~ !"="`) spans the blanks before the look-ahead.
+    match s.trim_end() {
         "+" => BinOp::Add,
         "-" => BinOp::Sub,
         "*" => BinOp::Mul,
         "/" => BinOp::Div,
         "//" => BinOp::FloorDiv,
         "%" => BinOp::Mod,
+        "|" => BinOp::BitOr,
+        "^" => BinOp::BitXor,
+        "&" => BinOp::BitAnd,
+        "<<" => BinOp::LShift,
+        ">>" => BinOp::RShift,
         _ => BinOp::Pow,
     }
+}
+
+/// A left-associative level of binary operators over the operands `next` parses.
+fn left_assoc(p: Pair<Rule>, next: fn(Pair<Rule>) -> PResult<Expr>) -> PResult<Expr> {
+    let mut inner = p.into_inner();
+    let mut acc = next(inner.next().unwrap())?;
+    while let Some(op) = inner.next() {
+        let r = next(inner.next().unwrap())?;
+        let sp = Span { start: acc.span.start, end: r.span.end };
+        acc = Expr::new(ExprKind::BinOp(Box::new(acc), binop(op.as_str()), Box::new(r)), sp);
+    }
+    Ok(acc)
+}
+
+fn bor(p: Pair<Rule>) -> PResult<Expr> {
+    left_assoc(p, bxor)
+}
+
+fn bxor(p: Pair<Rule>) -> PResult<Expr> {
+    left_assoc(p, band)
+}
+
+fn band(p: Pair<Rule>) -> PResult<Expr> {
+    left_assoc(p, shift)
+}
+
+fn shift(p: Pair<Rule>) -> PResult<Expr> {
+    left_assoc(p, arith)
 }
 
 fn arith(p: Pair<Rule>) -> PResult<Expr> {
