@@ -185,7 +185,8 @@ pub fn math_names() -> Vec<(String, Value)> {
 fn unsupported_module(module: &str) -> Error {
     let root = module.split('.').next().unwrap_or(module);
     match root {
-        "numpy" | "scipy" => Error::unsupported(format!(
+        "numpy" => Error::unsupported(format!("import {module}: this part of numpy is not supported by aster-rs")),
+        "scipy" => Error::unsupported(format!(
             "import {module}: {root} is not supported by aster-rs; command files may use the math module only"
         )),
         "code_aster" => Error::unsupported(format!(
@@ -239,7 +240,9 @@ pub fn get_attr(obj: &Value, name: &str) -> Result<Value> {
             return math_member(name)
                 .ok_or_else(|| Error::python(format!("AttributeError: module 'math' has no attribute '{name}'")))
         }
+        Value::Module(m @ ("numpy" | "numpy.linalg")) => return super::numpy::get_attr(m, name),
         Value::Module(_) => return super::modules::get_attr(obj, name),
+        Value::Array(_) => return super::numpy::array_attr(obj, name),
         Value::Instance(i) => {
             if let Some(v) = i.attrs.borrow().get(name) {
                 return Ok(v.clone());
@@ -465,6 +468,9 @@ pub fn call_builtin(it: &mut Interp, name: &'static str, args: Vec<Value>, kw: V
             "open: reading or writing files outside the run's units is not supported by aster-rs",
         ));
     }
+    if name.starts_with("numpy.") {
+        return super::numpy::call(name, &args, &kw);
+    }
     match name {
         "_F" => {
             if !args.is_empty() {
@@ -552,6 +558,7 @@ fn simple_builtin(name: &str, args: Vec<Value>, kw: &[(String, Value)]) -> Resul
             match &args[0] {
                 Value::Complex(a, b) => Ok(Value::Float(a.hypot(*b))),
                 Value::Float(f) => Ok(Value::Float(f.abs())),
+                Value::Array(_) => super::numpy::call("numpy.abs", &args, &[]),
                 v => Ok(Value::Int(int_arg(name, v)?.checked_abs().ok_or_else(|| Error::python("OverflowError"))?)),
             }
         }
@@ -562,6 +569,7 @@ fn simple_builtin(name: &str, args: Vec<Value>, kw: &[(String, Value)]) -> Resul
                 Value::List(l) => l.borrow().len(),
                 Value::Tuple(t) => t.len(),
                 Value::Dict(d) => d.borrow().items.len(),
+                Value::Array(a) => a.borrow().dims[0],
                 v => return Err(Error::python(format!("TypeError: object of type '{}' has no len()", v.type_name()))),
             };
             Ok(Value::Int(n as i64))
@@ -630,6 +638,13 @@ fn simple_builtin(name: &str, args: Vec<Value>, kw: &[(String, Value)]) -> Resul
                 Some(Value::Str(s)) => parse_float_text(s).map(Value::Float).ok_or_else(|| {
                     Error::python(format!("ValueError: could not convert string to float: {}", format::str_repr(s)))
                 }),
+                Some(Value::Array(a)) => {
+                    let a = a.borrow();
+                    match a.data.as_slice() {
+                        [x] => Ok(Value::Float(*x)),
+                        _ => Err(Error::python("TypeError: only length-1 arrays can be converted to Python scalars")),
+                    }
+                }
                 Some(v) => Ok(Value::Float(f64_arg(name, v)?)),
             }
         }
@@ -953,6 +968,7 @@ pub fn call_method(
     kw: Vec<(String, Value)>,
 ) -> Result<Value> {
     match recv {
+        Value::Array(a) => super::numpy::call_method(a, name, &args, &kw),
         Value::Str(s) => {
             if name == "format" {
                 return Ok(Value::str(&str_format(s, &args, &kw)?));

@@ -34,6 +34,7 @@ pub fn str_repr(s: &str) -> String {
 pub fn repr(v: &Value) -> String {
     match v {
         Value::Str(s) => str_repr(s),
+        Value::Array(a) => super::numpy::text(&a.borrow(), true),
         _ => to_str(v),
     }
 }
@@ -74,6 +75,7 @@ pub fn to_str(v: &Value) -> String {
         Value::Builtin(b) => format!("<built-in function {}>", b.0),
         Value::Method(_, m) => format!("<built-in method {m}>"),
         Value::Module(m) => format!("<module '{m}'>"),
+        Value::Array(a) => super::numpy::text(&a.borrow(), false),
         Value::Class(c) => format!("<class '__main__.{}'>", c.name),
         Value::Instance(i) => format!("<__main__.{} object>", i.class.name),
         Value::BoundMethod(i, f) => {

@@ -8,6 +8,7 @@ mod builtins;
 pub mod fast;
 pub mod format;
 mod modules;
+mod numpy;
 mod ops;
 pub mod value;
 
@@ -643,6 +644,16 @@ impl<'h> Interp<'h> {
             }
             ExprKind::Compare(first, rest) => {
                 let mut left = self.eval(first)?;
+                // An element-wise comparison of arrays gives an array (a single comparison only).
+                if let [(op, r)] = rest.as_slice() {
+                    if !matches!(op, CmpOp::In | CmpOp::NotIn | CmpOp::Is | CmpOp::IsNot) {
+                        let right = self.eval(r)?;
+                        if matches!(left, Value::Array(_)) || matches!(right, Value::Array(_)) {
+                            return numpy::compare(*op, &left, &right);
+                        }
+                        return Ok(Value::Bool(ops::compare(*op, &left, &right)?));
+                    }
+                }
                 for (op, r) in rest {
                     let right = self.eval(r)?;
                     if !ops::compare(*op, &left, &right)? {
@@ -873,11 +884,13 @@ impl<'h> Interp<'h> {
             match p.as_str() {
                 Some("--continue") if name == "CA.init" => cmd = "POURSUITE",
                 Some(o) if o.starts_with('-') && name == "CA.init" => {}
-                _ => return Err(Error::python(format!(
+                _ => {
+                    return Err(Error::python(format!(
                     "TypeError: {name}() takes command-line options ('--test', ...) as positional arguments, got {}",
                     format::repr(p)
                 ))
-                .at(span)),
+                    .at(span))
+                }
             }
         }
         // `debug=` is an option of the runner, not a keyword of DEBUT.

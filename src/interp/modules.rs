@@ -64,6 +64,8 @@ pub fn module(path: &str) -> Option<Value> {
         "code_aster.Commands" => "code_aster.Commands",
         "os" => "os",
         "os.path" => "os.path",
+        "numpy" => "numpy",
+        "numpy.linalg" => "numpy.linalg",
         _ => return None,
     }))
 }
@@ -82,6 +84,9 @@ pub fn import(path: &str, alias: bool) -> Option<Value> {
 /// `from MODULE import NAME`: the value, or None when MODULE is not one of ours.
 pub fn from_import(module_path: &str, name: &str) -> Option<Result<Value>> {
     let m = module(module_path)?;
+    if module_path.starts_with("numpy") {
+        return Some(super::numpy::get_attr(module_path, name));
+    }
     Some(get_attr(&m, name))
 }
 
@@ -90,6 +95,7 @@ pub fn star_import(module_path: &str) -> Option<Vec<(String, Value)>> {
     match module_path {
         // The commands are resolved through the host; CO comes with them.
         "code_aster.Commands" => Some(vec![("CO".into(), Value::Builtin(Builtin("CO")))]),
+        "numpy" => Some(super::numpy::star()),
         "os.path" => Some(
             OS_PATH_PURE
                 .iter()

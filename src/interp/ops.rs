@@ -82,6 +82,9 @@ fn zero_div() -> Error {
 
 pub fn binop(op: BinOp, a: &Value, b: &Value) -> Result<Value> {
     use Value::*;
+    if matches!(a, Array(_)) || matches!(b, Array(_)) {
+        return super::numpy::binop(op, a, b);
+    }
     // Integers (bool counts as int).
     if let (Some(x), Some(y)) = (int_like(a), int_like(b)) {
         return Ok(match op {
@@ -280,6 +283,9 @@ fn cplx(v: &Value) -> Option<(f64, f64)> {
 pub fn unary(op: UnOp, a: &Value) -> Result<Value> {
     match (op, a) {
         (UnOp::Not, v) => Ok(Value::Bool(!v.truthy()?)),
+        (UnOp::Neg, Value::Array(x)) => super::numpy::negate(&x.borrow()),
+        (UnOp::Pos, Value::Array(x)) => Ok(x.borrow().clone().value()),
+        (UnOp::Invert, Value::Array(x)) => super::numpy::invert(&x.borrow()),
         (UnOp::Neg, Value::Float(f)) => Ok(Value::Float(-f)),
         (UnOp::Neg, Value::Complex(x, y)) => Ok(Value::Complex(-x, -y)),
         (UnOp::Neg, v) if v.as_int().is_some() => {
@@ -394,7 +400,7 @@ fn norm_index(i: i64, len: usize) -> Option<usize> {
 }
 
 /// Resolve a Python slice to the list of indices it selects.
-fn slice_indices(len: usize, start: &Value, stop: &Value, step: &Value) -> Result<Vec<usize>> {
+pub(super) fn slice_indices(len: usize, start: &Value, stop: &Value, step: &Value) -> Result<Vec<usize>> {
     let step = match step {
         Value::None => 1,
         v => v.as_int().ok_or_else(|| Error::python("TypeError: slice indices must be integers"))?,
@@ -434,6 +440,9 @@ pub(super) fn as_slice(idx: &Value) -> Option<(Value, Value, Value)> {
 }
 
 pub fn get_item(obj: &Value, idx: &Value) -> Result<Value> {
+    if let Value::Array(a) = obj {
+        return super::numpy::get_item(&a.borrow(), idx);
+    }
     if let Some((a, b, c)) = as_slice(idx) {
         return match obj {
             Value::Str(s) => {
@@ -518,6 +527,14 @@ fn concept_item(c: &crate::concepts::ConceptRef, idx: &Value) -> Result<Value> {
 
 pub fn set_item(obj: &Value, idx: Value, v: Value) -> Result<()> {
     match obj {
+        Value::Array(a) => {
+            // The value is read before the array is borrowed: `a[0] = a[1]` reads a.
+            let v = match &v {
+                Value::Array(x) if std::rc::Rc::ptr_eq(x, a) => x.borrow().clone().value(),
+                _ => v,
+            };
+            super::numpy::set_item(&mut a.borrow_mut(), &idx, &v)
+        }
         Value::List(l) => {
             let i = idx.as_int().ok_or_else(|| Error::python("TypeError: list indices must be integers"))?;
             let mut l = l.borrow_mut();

@@ -58,6 +58,8 @@ pub enum Value {
     Instance(Rc<Instance>),
     /// A method of an object, bound to it: `obj.method`.
     BoundMethod(Rc<Instance>, Rc<Function>),
+    /// A numpy array (the subset of `interp::numpy`).
+    Array(super::numpy::ArrayRef),
     /// A Code_Aster command, called by the interpreter through the host.
     Command(&'static str),
     Concept(ConceptRef),
@@ -114,6 +116,7 @@ impl Value {
             Value::Func(_) => "function".into(),
             Value::Builtin(_) | Value::Method(..) => "builtin_function_or_method".into(),
             Value::Module(_) => "module".into(),
+            Value::Array(_) => "numpy.ndarray".into(),
             Value::Class(_) => "type".into(),
             Value::Instance(i) => i.class.name.clone(),
             Value::BoundMethod(..) => "method".into(),
@@ -133,6 +136,7 @@ impl Value {
             Value::Tuple(t) => !t.is_empty(),
             Value::List(l) => !l.borrow().is_empty(),
             Value::Dict(d) => !d.borrow().items.is_empty(),
+            Value::Array(a) => super::numpy::truthy(&a.borrow())?,
             _ => true,
         })
     }
@@ -167,6 +171,7 @@ impl Value {
             Value::List(l) => Ok(l.borrow().clone()),
             Value::Str(s) => Ok(s.chars().map(|c| Value::str(&c.to_string())).collect()),
             Value::Dict(d) => Ok(d.borrow().items.iter().map(|(k, _)| k.clone()).collect()),
+            Value::Array(a) => Ok(a.borrow().items()),
             v => Err(Error::python(format!("'{}' object is not iterable", v.type_name()))),
         }
     }
@@ -194,6 +199,7 @@ pub fn py_eq(a: &Value, b: &Value) -> bool {
         (Builtin(x), Builtin(y)) => x == y,
         (Command(x), Command(y)) => x == y,
         (Module(x), Module(y)) => x == y,
+        (Array(x), Array(y)) => std::rc::Rc::ptr_eq(x, y),
         (Class(x), Class(y)) => std::rc::Rc::ptr_eq(x, y),
         (Instance(x), Instance(y)) => std::rc::Rc::ptr_eq(x, y),
         _ => match (a.as_int(), b.as_int()) {
