@@ -109,7 +109,11 @@ def main():
     lines.append("")
     lines.append("| command files | pass `aster check` | stop on Python outside the subset | stop on a catalogue rule |")
     lines.append("|---:|---:|---:|---:|")
-    lines.append("| %s | %s | %s | %s |" % (fmt(len(files)), fmt(len(ok)), fmt(kinds["python"]), fmt(kinds["catalogue"])))
+    for label, sel in ((" `.comm`", lambda f: f.endswith(".comm")), (" continued", lambda f: not f.endswith(".comm")), ("", lambda f: True)):
+        fs = [f for f in files if sel(f)]
+        k = collections.Counter(reason(bad[f])[0] for f in fs if f in bad)
+        n_ok = sum(1 for f in fs if res[f] == "OK")
+        lines.append("| %s%s | %s | %s | %s |" % (fmt(len(fs)), label, fmt(n_ok), fmt(k["python"]), fmt(k["catalogue"])))
     lines.append("")
     lines.append("The first refusal of the other files, grouped by what it names (most frequent first):")
     lines.append("")

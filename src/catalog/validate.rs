@@ -109,15 +109,16 @@ pub fn produced(cmd: &Command, args: &Args) -> Result<Produced> {
                         Outcome::Nothing => Produced::Nothing,
                         Outcome::TypeOf(path) => match values(path).and_then(|v| v.into_iter().next()) {
                             Some(Probe::Concept(c)) if c.alternatives().is_empty() => Produced::Kind(c.kind()),
-                            Some(Probe::Concept(c)) => Produced::OneOf(c.alternatives().to_vec()),
+                            Some(Probe::Concept(c)) => Produced::OneOf(c.alternatives()),
                             _ => Produced::OneOf(one_of.clone()),
                         },
                     });
                 }
             }
+            // What the cases do not tell: one of these types, each possibly a subtype (a
+            // `resultat_sdaster` may be an evol_elas).
             match one_of.as_slice() {
                 [] => Produced::Nothing,
-                [k] => Produced::Kind(*k),
                 ks => Produced::OneOf(ks.to_vec()),
             }
         }
@@ -361,7 +362,7 @@ impl<'a> Level<'a> {
     fn values_of(&self, name: &str, given: &[KwArg], active: &[&Entry], parents: &[&Args]) -> Option<Vec<Probe>> {
         if let Some(k) = given.iter().find(|k| k.name == name) {
             let items = match &k.value {
-                Value::Tuple(_) | Value::List(_) => k.value.iter_items().ok()?,
+                Value::Tuple(_) | Value::List(_) | Value::Array(_) => k.value.iter_items().ok()?,
                 v => vec![v.clone()],
             };
             return Some(items.iter().map(Probe::from_value).collect());
@@ -458,7 +459,8 @@ impl<'a> Level<'a> {
             );
         }
         let mut items = match v {
-            Value::Tuple(_) | Value::List(_) => v.iter_items()?,
+            // A numpy array is a sequence of its values (its rows for a 2-D one), as in Code_Aster.
+            Value::Tuple(_) | Value::List(_) | Value::Array(_) => v.iter_items()?,
             _ => vec![v.clone()],
         };
         if s.types.contains(&Ty::C) {

@@ -115,10 +115,12 @@ pub enum ConceptData {
 /// A command result: its type, the name it was given, and its data.
 #[derive(Debug)]
 pub struct Concept {
-    kind: ConceptKind,
+    /// Changes once: a `CO('name')` placeholder becomes the concept the command creates under it.
+    kind: std::cell::Cell<ConceptKind>,
     /// `aster check` only: the types a result may have when the catalogue cannot tell which one
-    /// without computing (`kind` is then their common ancestor); empty otherwise.
-    alternatives: Vec<ConceptKind>,
+    /// without computing, each possibly a subtype of the one named (`kind` is then their common
+    /// ancestor); empty when the type is known.
+    alternatives: RefCell<Vec<ConceptKind>>,
     name: RefCell<String>,
     data: RefCell<ConceptData>,
 }
@@ -127,16 +129,21 @@ pub type ConceptRef = Rc<Concept>;
 
 impl Concept {
     pub fn new(kind: ConceptKind, data: ConceptData) -> ConceptRef {
-        Rc::new(Concept { kind, alternatives: Vec::new(), name: RefCell::new(String::new()), data: RefCell::new(data) })
+        Rc::new(Concept {
+            kind: kind.into(),
+            alternatives: RefCell::new(Vec::new()),
+            name: RefCell::new(String::new()),
+            data: RefCell::new(data),
+        })
     }
     /// A placeholder (`aster check`) for a result whose type is one of `kinds`, not known without
     /// computing.
     pub fn pending_one_of(kinds: &[ConceptKind]) -> ConceptRef {
         let kind = ConceptKind::common_ancestor(kinds);
-        let alternatives = if kinds.len() > 1 { kinds.to_vec() } else { Vec::new() };
+        let alternatives = kinds.to_vec();
         Rc::new(Concept {
-            kind,
-            alternatives,
+            kind: kind.into(),
+            alternatives: RefCell::new(alternatives),
             name: RefCell::new(String::new()),
             data: RefCell::new(ConceptData::Pending),
         })
@@ -144,14 +151,29 @@ impl Concept {
     /// Can this concept be used where a `k` is expected: its type is `k` or a subtype, or (a
     /// placeholder of uncertain type) one of the types it may have is.
     pub fn may_be(&self, k: ConceptKind) -> bool {
-        self.kind.is_a(k) || self.alternatives.iter().any(|a| a.is_a(k))
+        if self.kind().is_a(k) {
+            return true;
+        }
+        // `aster check`'s placeholders know their type up to what the catalogue tells: one of the
+        // alternatives, or a type that is only an upper bound (CALC_CHAMP's result is a
+        // resultat_sdaster: an evol_elas, an evol_noli, ...).
+        if !matches!(*self.data.borrow(), ConceptData::Pending) {
+            return false;
+        }
+        self.alternatives.borrow().iter().any(|a| a.is_a(k) || k.is_a(*a))
     }
     /// The types a placeholder of uncertain type may have (empty when the type is known).
-    pub fn alternatives(&self) -> &[ConceptKind] {
-        &self.alternatives
+    pub fn alternatives(&self) -> Vec<ConceptKind> {
+        self.alternatives.borrow().clone()
+    }
+    /// `aster check`: the `CO('name')` placeholder becomes a concept of one of `kinds`, the one its
+    /// command creates (the same object, so that every reference to the placeholder sees it).
+    pub fn become_one_of(&self, kinds: &[ConceptKind]) {
+        self.kind.set(ConceptKind::common_ancestor(kinds));
+        *self.alternatives.borrow_mut() = kinds.to_vec();
     }
     pub fn kind(&self) -> ConceptKind {
-        self.kind
+        self.kind.get()
     }
     pub fn name(&self) -> String {
         self.name.borrow().clone()
@@ -178,7 +200,7 @@ impl Concept {
     pub fn label(&self) -> String {
         let n = self.name();
         if n.is_empty() {
-            format!("<{}>", self.kind)
+            format!("<{}>", self.kind())
         } else {
             n
         }

@@ -64,6 +64,9 @@ pub fn module(path: &str) -> Option<Value> {
         "code_aster.Commands" => "code_aster.Commands",
         "os" => "os",
         "os.path" => "os.path",
+        // Imported by files that never use them; every attribute stops by name.
+        "sys" => "sys",
+        "re" => "re",
         "numpy" => "numpy",
         "numpy.linalg" => "numpy.linalg",
         _ => return None,
@@ -126,6 +129,8 @@ pub fn get_attr(m: &Value, name: &str) -> Result<Value> {
         ("os", n) => {
             Err(refused(&format!("os.{n}"), "reaching the file system or the process outside the run's units"))
         }
+        ("sys", n) => Err(refused(&format!("sys.{n}"), "the interpreter's process")),
+        ("re", n) => Err(refused(&format!("re.{n}"), "the regular expressions module")),
         ("os.path", n) => match OS_PATH_PURE.iter().position(|p| *p == n) {
             Some(i) => Ok(Value::Builtin(Builtin(OS_PATH_QUALIFIED[i]))),
             None => Err(refused(&format!("os.path.{n}"), "reaching the file system outside the run's units")),
@@ -243,6 +248,15 @@ mod tests {
         assert_eq!(text(call_os_path("normpath", &[s("a//b/./c/../d")]).unwrap()), "'a/b/d'");
         assert_eq!(text(call_os_path("normpath", &[s("/../x")]).unwrap()), "'/x'");
         assert!(call_os_path("exists", &[s("x")]).is_err());
+    }
+
+    #[test]
+    fn sys_and_re_import_but_stop_on_use() {
+        for (m, attr) in [("sys", "argv"), ("re", "compile")] {
+            let module = import(m, false).unwrap();
+            let e = get_attr(&module, attr).unwrap_err();
+            assert!(e.msg.contains(&format!("{m}.{attr}")) && e.msg.contains("not supported"), "{}", e.msg);
+        }
     }
 
     #[test]

@@ -124,10 +124,13 @@ impl Session {
         };
         let kept = kept.filter(|_| self.mode == Mode::Run);
         let mut produced = validate::produced(cmd, &validated.args).map_err(|e| e.at(span).in_command(name))?;
-        if let (Produced::OneOf(_), Some(h)) = (&produced, hand) {
-            // Code_Aster's cases could not tell; our own rule may.
-            if let Ok(p @ Produced::Kind(_)) = validate::produced(h, &validated.args) {
-                produced = p;
+        if let (Produced::OneOf(ks), Some(h)) = (&produced, hand) {
+            // Code_Aster's cases could not tell; our own rule may (unless it only repeats one of the
+            // possible types: the type of an argument that is itself uncertain).
+            if let Ok(Produced::Kind(k)) = validate::produced(h, &validated.args) {
+                if !ks.contains(&k) {
+                    produced = Produced::Kind(k);
+                }
             }
         }
         let validated = match (kept, hand) {
@@ -163,9 +166,8 @@ impl Session {
             }
             // The concepts named by CO('name') come into being under their names.
             for (co, kinds) in &validated.new_concepts {
-                let c = Concept::pending_one_of(kinds);
-                c.set_name(&co.name());
-                self.globals.borrow_mut().insert(co.name(), Value::Concept(c));
+                co.become_one_of(kinds);
+                self.globals.borrow_mut().insert(co.name(), Value::Concept(co.clone()));
             }
             return Ok(match (&validated.reuse, produced) {
                 (_, Produced::Nothing) => Value::None,
