@@ -132,14 +132,7 @@ pub fn rewrite(cmd: &str, kw: &mut Vec<KwArg>) {
             result_from_reuse(kw);
             stationnaire(kw);
             if cmd == "THER_NON_LINE" && !has(kw, "TYPE_CALCUL") {
-                let stat_init = match value(kw, "ETAT_INIT") {
-                    None => true,
-                    Some(v) => occurrences(v).first().map(|o| dict_has(o, "STAT")).unwrap_or(false),
-                };
-                if stat_init && !has(kw, "INCREMENT") {
-                    push(kw, "TYPE_CALCUL", Value::str("STAT"));
-                    remove(kw, "ETAT_INIT");
-                }
+                stationary_without_increment(kw);
             }
             transient_default_state(kw);
             if cmd == "THER_NON_LINE" && has(kw, "NEWTON") {
@@ -169,14 +162,7 @@ pub fn rewrite(cmd: &str, kw: &mut Vec<KwArg>) {
             result_from_reuse(kw);
             stationnaire(kw);
             if !has(kw, "TYPE_CALCUL") {
-                let stat_init = match value(kw, "ETAT_INIT") {
-                    None => true,
-                    Some(v) => occurrences(v).first().map(|o| dict_has(o, "STAT")).unwrap_or(false),
-                };
-                if stat_init && !has(kw, "INCREMENT") {
-                    push(kw, "TYPE_CALCUL", Value::str("STAT"));
-                    remove(kw, "ETAT_INIT");
-                }
+                stationary_without_increment(kw);
             }
             if value(kw, "TYPE_CALCUL").and_then(Value::as_str).is_none_or(|t| t == "TRAN") {
                 if !has(kw, "ETAT_INIT") {
@@ -200,6 +186,19 @@ pub fn rewrite(cmd: &str, kw: &mut Vec<KwArg>) {
 }
 
 /// `reuse=R` without RESULTAT: RESULTAT=R.
+
+/// No TYPE_CALCUL, a stationary initial state (or none) and no INCREMENT: the older spelling of a
+/// stationary computation, TYPE_CALCUL='STAT'.
+fn stationary_without_increment(kw: &mut Vec<KwArg>) {
+    let stat_init = match value(kw, "ETAT_INIT") {
+        None => true,
+        Some(v) => occurrences(v).first().map(|o| dict_has(o, "STAT")).unwrap_or(false),
+    };
+    if stat_init && !has(kw, "INCREMENT") {
+        push(kw, "TYPE_CALCUL", Value::str("STAT"));
+        remove(kw, "ETAT_INIT");
+    }
+}
 fn result_from_reuse(kw: &mut Vec<KwArg>) {
     if !has(kw, "RESULTAT") {
         if let Some(r) = value(kw, "reuse").cloned() {

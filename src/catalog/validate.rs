@@ -747,6 +747,17 @@ fn values_ok(c: &ValCheck, vals: &[Val]) -> bool {
     }
 }
 
+/// An `and` (`decisive` false) or an `or` (`decisive` true) of operands that may be uncertain (None).
+fn decided_by(r: Vec<Option<bool>>, decisive: bool) -> Option<bool> {
+    if r.contains(&Some(decisive)) {
+        Some(decisive)
+    } else if r.contains(&None) {
+        None
+    } else {
+        Some(!decisive)
+    }
+}
+
 /// `('RI', re, im)` or `('MP', modulus, degrees)` as a complex.
 fn old_complex(v: &Value) -> Option<Value> {
     if !matches!(v, Value::Tuple(_) | Value::List(_)) {
@@ -864,26 +875,9 @@ pub(crate) fn holds_on(
         Cond::In(k, vs) => vals(k).is_some_and(|x| x.iter().any(|p| vs.iter().any(|v| p.matches(v)))),
         Cond::Present(k) => vals(k).is_some(),
         Cond::Absent(k) => vals(k).is_none(),
-        Cond::And(cs) => {
-            let r: Vec<Option<bool>> = cs.iter().map(rec).collect();
-            if r.contains(&Some(false)) {
-                false
-            } else if r.contains(&None) {
-                return None;
-            } else {
-                true
-            }
-        }
-        Cond::Or(cs) => {
-            let r: Vec<Option<bool>> = cs.iter().map(rec).collect();
-            if r.contains(&Some(true)) {
-                true
-            } else if r.contains(&None) {
-                return None;
-            } else {
-                false
-            }
-        }
+        // Three-valued: one decisive operand decides, else an uncertain one leaves it uncertain.
+        Cond::And(cs) => return decided_by(cs.iter().map(rec).collect(), false),
+        Cond::Or(cs) => return decided_by(cs.iter().map(rec).collect(), true),
         Cond::Not(c) => !rec(c)?,
         Cond::True => true,
         Cond::False => false,

@@ -7,30 +7,9 @@
 //! deliberate and documented: a slice is a copy, not a view of the array it was taken from, and the
 //! elements of an array are Python `int`, `float` and `bool` values.
 
-use super::value::{Builtin, Value};
+use super::value::{scalar, Array, ArrayRef, Builtin, DType, Value};
 use crate::diag::{Error, Result};
 use crate::text::float_repr;
-use std::cell::RefCell;
-use std::rc::Rc;
-
-/// The element type of an array.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub enum DType {
-    Bool,
-    Int,
-    Float,
-}
-
-/// A 1-D or 2-D array (`dims` has one or two entries), row-major; integers and booleans are held as
-/// exact f64 values.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Array {
-    pub dims: Vec<usize>,
-    pub data: Vec<f64>,
-    pub dtype: DType,
-}
-
-pub type ArrayRef = Rc<RefCell<Array>>;
 
 fn err(msg: impl Into<String>) -> Error {
     Error::python(msg.into())
@@ -38,56 +17,6 @@ fn err(msg: impl Into<String>) -> Error {
 
 fn unsupported(what: &str) -> Error {
     Error::unsupported(format!("{what}: this part of numpy is not supported by aster-rs"))
-}
-
-impl Array {
-    pub fn new(dims: Vec<usize>, data: Vec<f64>, dtype: DType) -> Array {
-        debug_assert_eq!(dims.iter().product::<usize>(), data.len());
-        Array { dims, data, dtype }
-    }
-    pub fn vector(data: Vec<f64>, dtype: DType) -> Array {
-        Array { dims: vec![data.len()], data, dtype }
-    }
-    pub fn value(self) -> Value {
-        Value::Array(Rc::new(RefCell::new(self)))
-    }
-    pub fn ndim(&self) -> usize {
-        self.dims.len()
-    }
-    pub fn size(&self) -> usize {
-        self.data.len()
-    }
-    fn rows(&self) -> usize {
-        self.dims[0]
-    }
-    fn cols(&self) -> usize {
-        if self.dims.len() == 2 {
-            self.dims[1]
-        } else {
-            1
-        }
-    }
-    /// An element as a Python value of the array's type.
-    pub fn scalar(&self, x: f64) -> Value {
-        scalar(x, self.dtype)
-    }
-    /// The items a Python iteration yields: elements of a 1-D array, rows of a 2-D one.
-    pub fn items(&self) -> Vec<Value> {
-        match self.ndim() {
-            1 => self.data.iter().map(|x| self.scalar(*x)).collect(),
-            _ => (0..self.rows())
-                .map(|i| Array::vector(self.data[i * self.cols()..(i + 1) * self.cols()].to_vec(), self.dtype).value())
-                .collect(),
-        }
-    }
-}
-
-pub fn scalar(x: f64, dtype: DType) -> Value {
-    match dtype {
-        DType::Bool => Value::Bool(x != 0.0),
-        DType::Int => Value::Int(x as i64),
-        DType::Float => Value::Float(x),
-    }
 }
 
 // ------------------------------------------------------------------ conversion
@@ -140,7 +69,7 @@ fn as_usize(v: &Value, what: &str) -> Result<usize> {
         Some(i) if i >= 0 => Ok(i as usize),
         _ => match v {
             Value::Float(f) if *f >= 0.0 && f.fract() == 0.0 => Ok(*f as usize),
-            _ => Err(err(format!("TypeError: {what} expects a non-negative integer, got {}", super::format::repr(v)))),
+            _ => Err(err(format!("TypeError: {what} expects a non-negative integer, got {}", v.type_name()))),
         },
     }
 }
@@ -304,16 +233,6 @@ pub fn invert(a: &Array) -> Result<Value> {
     }
 }
 
-pub fn truthy(a: &Array) -> Result<bool> {
-    match a.size() {
-        1 => Ok(a.data[0] != 0.0),
-        0 => Ok(false),
-        _ => Err(err(
-            "ValueError: The truth value of an array with more than one element is ambiguous. Use a.any() or a.all()",
-        )),
-    }
-}
-
 fn map(a: &Array, dtype: DType, f: impl Fn(f64) -> f64) -> Array {
     Array::new(a.dims.clone(), a.data.iter().map(|x| f(*x)).collect(), dtype)
 }
@@ -335,8 +254,8 @@ fn norm(i: i64, len: usize, axis: usize) -> Result<usize> {
 }
 
 fn one_index(v: &Value, len: usize, axis: usize) -> Result<Ix> {
-    if let Some((a, b, c)) = super::ops::as_slice(v) {
-        return Ok(Ix::Range(super::ops::slice_indices(len, &a, &b, &c)?));
+    if let Some((a, b, c)) = super::value::as_slice(v) {
+        return Ok(Ix::Range(super::value::slice_indices(len, &a, &b, &c)?));
     }
     if let Some(i) = v.as_int().filter(|_| !matches!(v, Value::Bool(_))) {
         return Ok(Ix::One(norm(i, len, axis)?));
@@ -376,7 +295,7 @@ fn resolve(a: &Array, idx: &Value) -> Result<Vec<Ix>> {
         }
     }
     let parts: Vec<Value> = match idx {
-        Value::Tuple(t) if super::ops::as_slice(idx).is_none() => t.as_ref().clone(),
+        Value::Tuple(t) if super::value::as_slice(idx).is_none() => t.as_ref().clone(),
         v => vec![v.clone()],
     };
     if parts.len() > a.ndim() {
@@ -598,100 +517,11 @@ pub fn text(a: &Array, repr: bool) -> String {
 
 // ------------------------------------------------------------------ the module
 
-/// The names of numpy we provide (`np.NAME`), in the order of `QUALIFIED`.
-const FUNCS: &[&str] = &[
-    "array",
-    "asarray",
-    "zeros",
-    "ones",
-    "full",
-    "empty",
-    "zeros_like",
-    "ones_like",
-    "linspace",
-    "arange",
-    "logspace",
-    "eye",
-    "identity",
-    "diag",
-    "copy",
-    "abs",
-    "absolute",
-    "fabs",
-    "sign",
-    "sqrt",
-    "square",
-    "exp",
-    "log",
-    "log10",
-    "sin",
-    "cos",
-    "tan",
-    "arcsin",
-    "arccos",
-    "arctan",
-    "arctan2",
-    "sinh",
-    "cosh",
-    "tanh",
-    "floor",
-    "ceil",
-    "around",
-    "round",
-    "real",
-    "imag",
-    "isnan",
-    "isinf",
-    "isfinite",
-    "minimum",
-    "maximum",
-    "power",
-    "degrees",
-    "radians",
-    "deg2rad",
-    "rad2deg",
-    "sum",
-    "max",
-    "amax",
-    "min",
-    "amin",
-    "mean",
-    "std",
-    "median",
-    "prod",
-    "argmax",
-    "argmin",
-    "any",
-    "all",
-    "cumsum",
-    "diff",
-    "dot",
-    "outer",
-    "cross",
-    "transpose",
-    "reshape",
-    "ravel",
-    "concatenate",
-    "vstack",
-    "hstack",
-    "append",
-    "shape",
-    "size",
-    "ndim",
-    "interp",
-    "allclose",
-    "isclose",
-    "where",
-    "trapz",
-    "sort",
-    "nonzero",
-    "count_nonzero",
-];
-
-macro_rules! qualified {
-    ($($n:literal),* $(,)?) => { &[$(concat!("numpy.", $n)),*] };
+macro_rules! names {
+    ($($n:literal),* $(,)?) => { (&[$($n),*], &[$(concat!("numpy.", $n)),*]) };
 }
-const QUALIFIED: &[&str] = qualified![
+/// The names of numpy we provide (`np.NAME`) and their qualified names, in the same order.
+const NAMES: (&[&str], &[&str]) = names![
     "array",
     "asarray",
     "zeros",
@@ -779,6 +609,8 @@ const QUALIFIED: &[&str] = qualified![
     "nonzero",
     "count_nonzero",
 ];
+const FUNCS: &[&str] = NAMES.0;
+const QUALIFIED: &[&str] = NAMES.1;
 
 const LINALG: &[&str] = &["norm", "solve", "inv", "det"];
 const LINALG_QUALIFIED: &[&str] = &["numpy.linalg.norm", "numpy.linalg.solve", "numpy.linalg.inv", "numpy.linalg.det"];
@@ -1228,7 +1060,7 @@ fn dtype_of(t: &Value) -> Result<DType> {
         Value::Str(s) if matches!(&**s, "float" | "float64" | "f8" | "d") => DType::Float,
         Value::Str(s) if matches!(&**s, "int" | "int64" | "i8") => DType::Int,
         Value::Str(s) if matches!(&**s, "bool") => DType::Bool,
-        other => return Err(unsupported(&format!("dtype={}", super::format::repr(other)))),
+        other => return Err(unsupported(&format!("dtype={}", other.type_name()))),
     })
 }
 

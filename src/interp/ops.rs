@@ -1,7 +1,7 @@
 //! Operators, comparisons and item access with Python semantics.
 
 use super::format;
-use super::value::{py_eq, Builtin, Value};
+use super::value::{as_slice, py_eq, slice_indices, Value};
 use crate::diag::{Error, Result};
 use crate::syntax::ast::{BinOp, CmpOp, UnOp};
 use std::cmp::Ordering;
@@ -399,46 +399,6 @@ fn norm_index(i: i64, len: usize) -> Option<usize> {
     }
 }
 
-/// Resolve a Python slice to the list of indices it selects.
-pub(super) fn slice_indices(len: usize, start: &Value, stop: &Value, step: &Value) -> Result<Vec<usize>> {
-    let step = match step {
-        Value::None => 1,
-        v => v.as_int().ok_or_else(|| Error::python("TypeError: slice indices must be integers"))?,
-    };
-    if step == 0 {
-        return Err(Error::python("ValueError: slice step cannot be zero"));
-    }
-    let len = len as i64;
-    let clamp = |v: &Value, default: i64| -> Result<i64> {
-        match v {
-            Value::None => Ok(default),
-            v => {
-                let i = v.as_int().ok_or_else(|| Error::python("TypeError: slice indices must be integers"))?;
-                let i = if i < 0 { i + len } else { i };
-                Ok(if step > 0 { i.clamp(0, len) } else { i.clamp(-1, len - 1) })
-            }
-        }
-    };
-    let (s, e) =
-        if step > 0 { (clamp(start, 0)?, clamp(stop, len)?) } else { (clamp(start, len - 1)?, clamp(stop, -1)?) };
-    let mut out = Vec::new();
-    let mut i = s;
-    while (step > 0 && i < e) || (step < 0 && i > e) {
-        out.push(i as usize);
-        i += step;
-    }
-    Ok(out)
-}
-
-pub(super) fn as_slice(idx: &Value) -> Option<(Value, Value, Value)> {
-    if let Value::Tuple(t) = idx {
-        if t.len() == 4 && matches!(t[0], Value::Builtin(Builtin("slice"))) {
-            return Some((t[1].clone(), t[2].clone(), t[3].clone()));
-        }
-    }
-    None
-}
-
 pub fn get_item(obj: &Value, idx: &Value) -> Result<Value> {
     if let Value::Array(a) = obj {
         return super::numpy::get_item(&a.borrow(), idx);
@@ -575,6 +535,7 @@ pub fn del_item(obj: &Value, idx: &Value) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::interp::value::Builtin;
 
     #[test]
     fn python_integer_semantics() {

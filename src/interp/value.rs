@@ -59,7 +59,7 @@ pub enum Value {
     /// A method of an object, bound to it: `obj.method`.
     BoundMethod(Rc<Instance>, Rc<Function>),
     /// A numpy array (the subset of `interp::numpy`).
-    Array(super::numpy::ArrayRef),
+    Array(ArrayRef),
     /// A Code_Aster command, called by the interpreter through the host.
     Command(&'static str),
     Concept(ConceptRef),
@@ -136,7 +136,7 @@ impl Value {
             Value::Tuple(t) => !t.is_empty(),
             Value::List(l) => !l.borrow().is_empty(),
             Value::Dict(d) => !d.borrow().items.is_empty(),
-            Value::Array(a) => super::numpy::truthy(&a.borrow())?,
+            Value::Array(a) => truthy(&a.borrow())?,
             _ => true,
         })
     }
@@ -210,4 +210,126 @@ pub fn py_eq(a: &Value, b: &Value) -> bool {
             },
         },
     }
+}
+
+// ------------------------------------------------------------------ numpy arrays (interp::numpy)
+
+/// The element type of an array.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum DType {
+    Bool,
+    Int,
+    Float,
+}
+
+/// A 1-D or 2-D array (`dims` has one or two entries), row-major; integers and booleans are held as
+/// exact f64 values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Array {
+    pub dims: Vec<usize>,
+    pub data: Vec<f64>,
+    pub dtype: DType,
+}
+
+pub type ArrayRef = Rc<RefCell<Array>>;
+
+impl Array {
+    pub fn new(dims: Vec<usize>, data: Vec<f64>, dtype: DType) -> Array {
+        debug_assert_eq!(dims.iter().product::<usize>(), data.len());
+        Array { dims, data, dtype }
+    }
+    pub fn vector(data: Vec<f64>, dtype: DType) -> Array {
+        Array { dims: vec![data.len()], data, dtype }
+    }
+    pub fn value(self) -> Value {
+        Value::Array(Rc::new(RefCell::new(self)))
+    }
+    pub fn ndim(&self) -> usize {
+        self.dims.len()
+    }
+    pub fn size(&self) -> usize {
+        self.data.len()
+    }
+    pub fn rows(&self) -> usize {
+        self.dims[0]
+    }
+    pub fn cols(&self) -> usize {
+        if self.dims.len() == 2 {
+            self.dims[1]
+        } else {
+            1
+        }
+    }
+    /// An element as a Python value of the array's type.
+    pub fn scalar(&self, x: f64) -> Value {
+        scalar(x, self.dtype)
+    }
+    /// The items a Python iteration yields: elements of a 1-D array, rows of a 2-D one.
+    pub fn items(&self) -> Vec<Value> {
+        match self.ndim() {
+            1 => self.data.iter().map(|x| self.scalar(*x)).collect(),
+            _ => (0..self.rows())
+                .map(|i| Array::vector(self.data[i * self.cols()..(i + 1) * self.cols()].to_vec(), self.dtype).value())
+                .collect(),
+        }
+    }
+}
+
+pub fn scalar(x: f64, dtype: DType) -> Value {
+    match dtype {
+        DType::Bool => Value::Bool(x != 0.0),
+        DType::Int => Value::Int(x as i64),
+        DType::Float => Value::Float(x),
+    }
+}
+
+/// The truth value of an array: its one element; ambiguous for more.
+pub fn truthy(a: &Array) -> Result<bool> {
+    match a.size() {
+        1 => Ok(a.data[0] != 0.0),
+        0 => Ok(false),
+        _ => Err(Error::python(
+            "ValueError: The truth value of an array with more than one element is ambiguous. Use a.any() or a.all()",
+        )),
+    }
+}
+
+/// Resolve a Python slice to the list of indices it selects.
+pub(super) fn slice_indices(len: usize, start: &Value, stop: &Value, step: &Value) -> Result<Vec<usize>> {
+    let step = match step {
+        Value::None => 1,
+        v => v.as_int().ok_or_else(|| Error::python("TypeError: slice indices must be integers"))?,
+    };
+    if step == 0 {
+        return Err(Error::python("ValueError: slice step cannot be zero"));
+    }
+    let len = len as i64;
+    let clamp = |v: &Value, default: i64| -> Result<i64> {
+        match v {
+            Value::None => Ok(default),
+            v => {
+                let i = v.as_int().ok_or_else(|| Error::python("TypeError: slice indices must be integers"))?;
+                let i = if i < 0 { i + len } else { i };
+                Ok(if step > 0 { i.clamp(0, len) } else { i.clamp(-1, len - 1) })
+            }
+        }
+    };
+    let (s, e) =
+        if step > 0 { (clamp(start, 0)?, clamp(stop, len)?) } else { (clamp(start, len - 1)?, clamp(stop, -1)?) };
+    let mut out = Vec::new();
+    let mut i = s;
+    while (step > 0 && i < e) || (step < 0 && i > e) {
+        out.push(i as usize);
+        i += step;
+    }
+    Ok(out)
+}
+
+pub(super) fn as_slice(idx: &Value) -> Option<(Value, Value, Value)> {
+    if let Value::Tuple(t) = idx {
+        if t.len() == 4 && matches!(t[0], Value::Builtin(Builtin("slice"))) {
+            return Some((t[1].clone(), t[2].clone(), t[3].clone()));
+        }
+    }
+    None
 }

@@ -51,8 +51,8 @@ fn missing_thm_data() {
         .map(|l| format!("{l}\n"))
         .collect::<String>()
         + SOLVE;
-    // The catalogue knows COMP_THM needs THM_LIQU.
-    expect_diag("missing_thm", &comm, "DEFI_MATERIAU", "'COMP_THM' requires 'THM_LIQU'", "<F>_SYNTAX_ERROR");
+    // The catalogue knows COMP_THM needs THM_LIQU (Code_Aster's: a mandatory keyword of its block).
+    expect_diag("missing_thm", &comm, "DEFI_MATERIAU", "mandatory keyword 'THM_LIQU' is missing", "<F>_SYNTAX_ERROR");
     // A purely elastic material on an HM model: the driver names what is missing.
     let comm = column(1.0e8, 1.0, 0.3, 0.0, 1.0e-12).replace(
         "CHMAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT=\"OUI\", MATER=SOL))",
