@@ -185,8 +185,6 @@ pub fn rewrite(cmd: &str, kw: &mut Vec<KwArg>) {
     }
 }
 
-/// `reuse=R` without RESULTAT: RESULTAT=R.
-
 /// No TYPE_CALCUL, a stationary initial state (or none) and no INCREMENT: the older spelling of a
 /// stationary computation, TYPE_CALCUL='STAT'.
 fn stationary_without_increment(kw: &mut Vec<KwArg>) {
@@ -199,6 +197,8 @@ fn stationary_without_increment(kw: &mut Vec<KwArg>) {
         remove(kw, "ETAT_INIT");
     }
 }
+
+/// `reuse=R` without RESULTAT: RESULTAT=R.
 fn result_from_reuse(kw: &mut Vec<KwArg>) {
     if !has(kw, "RESULTAT") {
         if let Some(r) = value(kw, "reuse").cloned() {
