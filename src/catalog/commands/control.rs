@@ -52,7 +52,20 @@ fn starter() -> Vec<Entry> {
                 simp("VERI_BASE_NB").i(),
             ]
         ),
-        fact("BASE", kws![simp("TITRE").txt(), simp("CAS").txt()]).max(2),
+        // The sizes of Code_Aster's databases (no effect on what is computed).
+        fact(
+            "BASE",
+            kws![
+                simp("FICHIER").txt().one_of(&["GLOBALE", "VOLATILE"]),
+                simp("TAILLE").i(),
+                simp("LONG_ENRE").i(),
+                simp("NMAX_ENRE").i(),
+                simp("LONG_REPE").i(),
+                simp("TITRE").txt(),
+                simp("CAS").txt(),
+            ]
+        )
+        .max(2),
         fact("CATALOGUE", kws![simp("FICHIER").txt().o(), simp("UNITE").i()]).max(10),
         fact("MESURE_TEMPS", kws![simp("NIVE_DETAIL").i().one_of_i(&[0, 1, 2, 3]), yes_no("MOYENNE")]),
         fact("MEMOIRE", kws![simp("TAILLE_BLOC").r(), simp("TAILLE_GROUP_ELEM").i()]),
