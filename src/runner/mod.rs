@@ -356,7 +356,8 @@ pub fn alarm_count(mess: &str) -> String {
     format!("\n <A> {total} alarm(s) in this run: {}\n", parts.join(", "))
 }
 
-/// `aster check`: parse and validate every command call, computing nothing.
+/// `aster check`: parse and validate every command call, computing nothing but the pure definitions
+/// (functions, constants, lists) whose values the file's Python may use.
 /// Returns the number of commands checked, or the located error.
 pub fn check_file(path: &Path) -> Result<usize, (String, ErrorKind)> {
     let bytes = std::fs::read(path).map_err(|e| (format!("{}: {e}", path.display()), ErrorKind::Io))?;

@@ -169,6 +169,14 @@ impl Session {
                 co.become_one_of(kinds);
                 self.globals.borrow_mut().insert(co.name(), Value::Concept(co.clone()));
             }
+            // Pure definitions (functions, constants, lists of reals) are computed, so that the file's
+            // Python may use their values (`YOUN(TEMP)` in a later keyword); one that fails here is left
+            // to the run, which reports it.
+            if let (true, None, Produced::Kind(k)) = (PURE.contains(&name), &validated.reuse, &produced) {
+                if let Some(v) = self.compute_pure(name, span, &args, *k) {
+                    return Ok(v);
+                }
+            }
             return Ok(match (&validated.reuse, produced) {
                 (_, Produced::Nothing) => Value::None,
                 (Some(r), _) => Value::Concept(r.clone()),
@@ -205,6 +213,33 @@ impl Session {
             }),
             (None, _) => Ok(Value::None),
             (Some(k), None) => Err(Error::runtime(format!("internal error: {name} produced no {k}")).at(span)),
+        }
+    }
+}
+
+/// The commands `aster check` computes: definitions that read no file and cost nothing.
+const PURE: &[&str] = &["DEFI_CONSTANTE", "DEFI_FONCTION", "FORMULE", "DEFI_NAPPE", "DEFI_LIST_REEL", "DEFI_LIST_ENTI"];
+
+impl Session {
+    /// A pure definition computed in check mode: its concept, or None when its stage does not complete.
+    fn compute_pure(
+        &mut self,
+        name: &'static str,
+        span: Span,
+        args: &crate::catalog::args::Args,
+        k: crate::concepts::ConceptKind,
+    ) -> Option<Value> {
+        let stage = stages::stage(name)?;
+        let line = self.line_of(span);
+        let globals = self.globals.clone();
+        let mut ctx = Ctx { io: self, globals, command: name, line, reuse: None, int_result: None };
+        args.reset_reads();
+        take_undeclared_lookups();
+        let out = stage(&mut ctx, args);
+        let undeclared = take_undeclared_lookups();
+        match out {
+            Ok(Some(d)) if undeclared.is_empty() => Some(Value::Concept(Concept::new(k, d))),
+            _ => None,
         }
     }
 }

@@ -293,3 +293,22 @@ fn with_and_what_stays_outside() {
     let e = err("x = 1.5 | 2\n");
     assert!(e.contains("TypeError: unsupported operand type(s) for |: 'float' and 'int'"), "{e}");
 }
+
+/// `aster check` computes the pure definitions (DEFI_FONCTION, DEFI_CONSTANTE, FORMULE, lists), so that
+/// the file's Python may use their values in later keywords; a value read from a computed result still
+/// waits for the run.
+#[test]
+fn check_mode_computes_pure_definitions() {
+    let dir = scratch!("pure");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("pure.comm");
+    std::fs::write(
+        &path,
+        "DEBUT()\nYOUN = DEFI_FONCTION(NOM_PARA='TEMP', VALE=(0.0, 2.0e11, 100.0, 1.8e11))\n\
+         ALPH = FORMULE(VALE='1.0e-5 + 1.0e-8 * TEMP', NOM_PARA='TEMP')\n\
+         MAT = DEFI_MATERIAU(ELAS=_F(E=YOUN(50.0), NU=0.3, ALPHA=ALPH(20.0)))\nFIN()\n",
+    )
+    .unwrap();
+    assert_eq!(aster::runner::check_file(&path).map_err(|e| e.0), Ok(5));
+    let _ = std::fs::remove_dir_all(&dir);
+}
