@@ -22,6 +22,7 @@ use crate::fem::dofs::DofNumbering;
 use crate::fem::field::Field;
 use crate::fem::physics::{Failure, Force, Load, Physics, Prediction, Residual, StepInfo, Value};
 use crate::mesh::Mesh;
+use std::borrow::Cow;
 use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 
@@ -77,6 +78,9 @@ pub struct HeatState {
 
 /// The conduction matrix of a cell and its capacity matrix (row-major).
 type CellMatrices = (Vec<f64>, Option<Vec<f64>>);
+
+/// A cell's term and its derivative: computed, or lent from the matrices computed once.
+type CellTerm<'a> = (Vec<f64>, Cow<'a, [f64]>);
 
 /// A step from a start state: its identity, t⁻ and t⁺.
 type StepKey = (u64, f64, f64);
@@ -255,19 +259,21 @@ impl Thermal {
         temps: &[f64],
         t: f64,
         with_capacity: bool,
-    ) -> Result<((Vec<f64>, Vec<f64>), Option<(Vec<f64>, Vec<f64>)>), Error> {
+    ) -> Result<(CellTerm<'_>, Option<CellTerm<'_>>), Error> {
         let mesh = &*self.mesh;
+        let te = self.cell_temps(c, temps);
+        // The matrices computed once are lent, not copied.
+        if let Some((k, m)) = &self.constant[c] {
+            if !with_capacity || m.is_some() {
+                let cap =
+                    if with_capacity { m.as_ref().map(|m| (matvec(m, &te), Cow::Borrowed(&m[..]))) } else { None };
+                return Ok(((matvec(k, &te), Cow::Borrowed(&k[..])), cap));
+            }
+        }
         let (md, _) = self.elements[c].expect("a bulk cell has its element");
         let ct = mesh.cell_types[c];
         let x = self.coords(c);
-        let te = self.cell_temps(c, temps);
         let law = self.laws[c].as_ref().expect("a bulk cell has its law");
-        if let Some((k, m)) = &self.constant[c] {
-            if !with_capacity || m.is_some() {
-                let cap = if with_capacity { m.as_ref().map(|m| (matvec(m, &te), m.clone())) } else { None };
-                return Ok(((matvec(k, &te), k.clone()), cap));
-            }
-        }
         match &**law {
             Law::Linear { lambda, rho_cp } => {
                 let k = conduction(md, ct, &x, &Conductivity::Iso(lambda.at(t)?)).map_err(cell_err(mesh, c))?;
@@ -280,11 +286,11 @@ impl Thermal {
                         .at_keyword("CHAM_MATER")
                     })?;
                     let m = capacity(md, ct, &x, rc.at(t)?).map_err(cell_err(mesh, c))?;
-                    Some((matvec(&m, &te), m))
+                    Some((matvec(&m, &te), Cow::Owned(m)))
                 } else {
                     None
                 };
-                Ok(((matvec(&k, &te), k), cap))
+                Ok(((matvec(&k, &te), Cow::Owned(k)), cap))
             }
             Law::Nonlinear { lambda, beta } => {
                 let k = conduction_nl(md, ct, &x, &te, &|tp| {
@@ -293,23 +299,33 @@ impl Thermal {
                 })
                 .map_err(cell_err(mesh, c))?;
                 let cap = if with_capacity {
-                    Some(enthalpy_nl(md, ct, &x, &te, &|tp| Ok(beta.eval(tp)?)).map_err(cell_err(mesh, c))?)
+                    let (v, m) = enthalpy_nl(md, ct, &x, &te, &|tp| Ok(beta.eval(tp)?)).map_err(cell_err(mesh, c))?;
+                    Some((v, Cow::Owned(m)))
                 } else {
                     None
                 };
-                Ok((k, cap))
+                Ok(((k.0, Cow::Owned(k.1)), cap))
             }
         }
     }
 
-    /// The old terms of a transient step on every unknown: `(1 − θ) K(T⁻) − C(T⁻)/Δt`, the laws at `t⁺`.
-    fn old_terms(&self, step: &StepInfo, theta: f64, prev: &HeatState) -> Result<Vec<f64>, Error> {
+    /// Add the old terms of a transient step, `(1 − θ) K(T⁻) − C(T⁻)/Δt` (the laws at `t⁺`), to `fint`:
+    /// computed once per step and start state, then added from the cache.
+    fn add_old_terms(&self, step: &StepInfo, theta: f64, prev: &HeatState, fint: &mut [f64]) -> Result<(), Error> {
         let key = (prev.id, step.t0, step.t1);
-        if let Some((k, v)) = &*self.old.borrow() {
-            if *k == key {
-                return Ok(v.clone());
-            }
+        let cached = matches!(&*self.old.borrow(), Some((k, _)) if *k == key);
+        if !cached {
+            let g = self.old_terms(step, theta, prev)?;
+            *self.old.borrow_mut() = Some((key, g));
         }
+        let old = self.old.borrow();
+        let (_, g) = old.as_ref().expect("computed above");
+        fint.iter_mut().zip(g).for_each(|(f, v)| *f += v);
+        Ok(())
+    }
+
+    /// The old terms of a transient step on every unknown (see [`Thermal::add_old_terms`]).
+    fn old_terms(&self, step: &StepInfo, theta: f64, prev: &HeatState) -> Result<Vec<f64>, Error> {
         let dt = step.dt();
         let mut g = vec![0.0; prev.temps.len()];
         for &c in &self.bulk {
@@ -319,7 +335,6 @@ impl Thermal {
                 g[d] += (1.0 - theta) * k[i] - cv[i] / dt;
             }
         }
-        *self.old.borrow_mut() = Some((key, g.clone()));
         Ok(g)
     }
 
@@ -548,9 +563,7 @@ impl Physics for Thermal {
         let dt = step.dt();
         let mut cap = if steady { Vec::new() } else { vec![0.0; x.len()] };
         if !steady {
-            for (f, g) in fint.iter_mut().zip(self.old_terms(step, theta, prev)?) {
-                *f += g;
-            }
+            self.add_old_terms(step, theta, prev, fint)?;
         }
         for &c in &self.bulk {
             let dofs = self.cell_dofs(c);
@@ -560,7 +573,7 @@ impl Physics for Thermal {
                 fint[d] += theta * kv[i];
             }
             if let Some((cv, cm)) = capacity {
-                je.iter_mut().zip(&cm).for_each(|(a, b)| *a += b / dt);
+                je.iter_mut().zip(cm.iter()).for_each(|(a, b)| *a += b / dt);
                 for (i, &d) in dofs.iter().enumerate() {
                     fint[d] += cv[i] / dt;
                     cap[d] += cv[i];
