@@ -67,10 +67,21 @@ struct Frame {
 
 /// The reduced tangent and residual at a state, the internal forces and the laws' trial state.
 struct Assembled<S> {
-    k: faer::sparse::SparseColMat<usize, f64>,
+    /// None when only the residual was asked for.
+    k: Option<faer::sparse::SparseColMat<usize, f64>>,
     rhs: Vec<f64>,
     fint: Vec<f64>,
     state: S,
+}
+
+/// The matrix a solve takes.
+enum Matrix {
+    /// Factorized for this solve (a linear physics keeps it while it does not change).
+    Once(faer::sparse::SparseColMat<usize, f64>),
+    /// Factorized and held for the Newton corrections that reuse it (NEWTON REAC_ITER ≠ 1).
+    Hold(faer::sparse::SparseColMat<usize, f64>),
+    /// The matrix held last.
+    Held,
 }
 
 impl<'a, P: Physics> Driver<'a, P> {
@@ -169,6 +180,24 @@ impl<'a, P: Physics> Driver<'a, P> {
         }
     }
 
+    /// The reduced residual of the state `x` without the tangent (a correction with the matrix held).
+    fn assemble_residual(
+        &self,
+        fr: &Frame,
+        map: &DofMap,
+        x: &[f64],
+        prev: &P::State,
+        log: &mut StepLog,
+    ) -> std::result::Result<Assembled<P::State>, Failure> {
+        let started = std::time::Instant::now();
+        let mut fint = vec![0.0; x.len()];
+        let state = self.internal(&fr.step, x, prev, None, &mut fint)?;
+        let r: Vec<f64> = fr.fext.iter().zip(&fint).map(|(f, g)| f - g).collect();
+        let rhs = map.reduce_vector(&r);
+        log.assembly += started.elapsed().as_secs_f64();
+        Ok(Assembled { k: None, rhs, fint, state })
+    }
+
     /// Tangent and residual of the state `x` over the step from the laws' state `prev`, reduced by `map`.
     fn assemble(
         &self,
@@ -187,7 +216,7 @@ impl<'a, P: Physics> Driver<'a, P> {
         asm.add_vector(&all, &r);
         let (k, rhs) = asm.finish();
         log.assembly += started.elapsed().as_secs_f64();
-        Ok(Assembled { k, rhs, fint, state })
+        Ok(Assembled { k: Some(k), rhs, fint, state })
     }
 
     /// The internal forces at the state `x` (the loads that depend on it among them), the tangent added
@@ -263,16 +292,44 @@ impl<'a, P: Physics> Driver<'a, P> {
     fn factor_solve(
         &self,
         map: &DofMap,
-        mut k: faer::sparse::SparseColMat<usize, f64>,
+        matrix: Matrix,
         mut rhs: Vec<f64>,
         t1: f64,
         log: &mut StepLog,
     ) -> std::result::Result<Vec<f64>, Failure> {
         let phys = self.phys;
         let row: Vec<f64> = map.free_to_full.iter().map(|&d| phys.row_scale(d)).collect();
+        let scaled = row.iter().any(|&s| s != 1.0);
+        if scaled {
+            for (v, s) in rhs.iter_mut().zip(&row) {
+                *v *= s;
+            }
+        }
+        let names = |dofs: &[usize]| -> String {
+            dofs.iter().take(6).map(|&d| phys.label(map.free_to_full[d])).collect::<Vec<_>>().join(", ")
+        };
+        let bad_f: Vec<usize> = (0..rhs.len()).filter(|&d| !rhs[d].is_finite()).collect();
+        if !bad_f.is_empty() {
+            return Err(Failure::Fatal(self.cfg.err(
+                "EXCIT",
+                format!(
+                    "the loads are not finite (nan or infinite) at unknowns {}: check the values of the loads",
+                    names(&bad_f)
+                ),
+            )));
+        }
+        let (mut k, hold) = match matrix {
+            Matrix::Once(k) => (k, false),
+            Matrix::Hold(k) => (k, true),
+            Matrix::Held => {
+                let opts = SolverOptions { condition: false, ..self.opts };
+                let sol = self.solve_kept(None, &rhs, &opts);
+                return self.account(map, sol, t1, log);
+            }
+        };
         // Rows scaled in place: the system is consumed by its solve (no copy of the matrix is kept alive
         // beside its factors).
-        if row.iter().any(|&s| s != 1.0) {
+        if scaled {
             let ncols = k.ncols();
             let (symbolic, vals) = k.parts_mut();
             let (cp, ri) = (symbolic.col_ptr(), symbolic.row_idx());
@@ -281,15 +338,9 @@ impl<'a, P: Physics> Driver<'a, P> {
                     vals[q] *= row[ri[q]];
                 }
             }
-            for (v, s) in rhs.iter_mut().zip(&row) {
-                *v *= s;
-            }
         }
         // A nan or an infinity in the data (E, NU, a load, a coordinate) reaches the system as such: name
         // it, rather than let the factorization call the system singular.
-        let names = |dofs: &[usize]| -> String {
-            dofs.iter().take(6).map(|&d| phys.label(map.free_to_full[d])).collect::<Vec<_>>().join(", ")
-        };
         let (col_ptr, values) = (k.col_ptr(), k.val());
         let bad_k: Vec<usize> =
             (0..k.ncols()).filter(|&j| values[col_ptr[j]..col_ptr[j + 1]].iter().any(|v| !v.is_finite())).collect();
@@ -303,16 +354,6 @@ impl<'a, P: Physics> Driver<'a, P> {
                 ),
             )));
         }
-        let bad_f: Vec<usize> = (0..rhs.len()).filter(|&d| !rhs[d].is_finite()).collect();
-        if !bad_f.is_empty() {
-            return Err(Failure::Fatal(self.cfg.err(
-                "EXCIT",
-                format!(
-                    "the loads are not finite (nan or infinite) at unknowns {}: check the values of the loads",
-                    names(&bad_f)
-                ),
-            )));
-        }
         // The condition number is estimated on the first factorization only: it costs about ten solves,
         // as much as the factorization itself on large 2D systems, and the steps that follow change the
         // tangent little (NPREC still checks every factorization's pivots).
@@ -320,14 +361,30 @@ impl<'a, P: Physics> Driver<'a, P> {
         if let Some(m) = phys.solver_method(k.nrows()) {
             opts.method = m;
         }
-        // A linear physics over several steps keeps its matrix and factors for the next step; a single
-        // solve (MECA_STATIQUE) keeps nothing beside its factors.
-        let (sol, fresh) = if phys.linear() && self.cfg.times.len() > 2 {
-            self.solve_kept(k, &rhs, &opts)
+        // A linear physics over several steps keeps its matrix and factors for the next step, and so does a
+        // Newton whose corrections reuse it (`hold`); a single solve (MECA_STATIQUE) keeps nothing beside
+        // its factors.
+        let sol = if hold {
+            *self.kept.borrow_mut() = None;
+            self.solve_kept(Some((k, true)), &rhs, &opts)
+        } else if phys.linear() && self.cfg.times.len() > 2 {
+            self.solve_kept(Some((k, false)), &rhs, &opts)
         } else {
             solve::solve_with(k.as_ref(), &rhs, &opts, &mut self.analysis.borrow_mut()).map(|s| (s, true))
-        }
-        .map_err(|e| {
+        };
+        self.account(map, sol, t1, log)
+    }
+
+    /// A solve's errors named, its times and factorizations counted in the log.
+    fn account(
+        &self,
+        map: &DofMap,
+        sol: std::result::Result<(solve::Solution, bool), solve::SolveError>,
+        t1: f64,
+        log: &mut StepLog,
+    ) -> std::result::Result<Vec<f64>, Failure> {
+        let phys = self.phys;
+        let (sol, fresh) = sol.map_err(|e| {
             let singular = matches!(e, solve::SolveError::Singular { .. });
             let msg = super::solver::solve_error(e, &self.opts, &|d| phys.label(map.free_to_full[d]));
             if phys.linear() && singular {
@@ -358,30 +415,37 @@ impl<'a, P: Physics> Driver<'a, P> {
         Ok(sol.x)
     }
 
-    /// A linear physics' solve: with the factorization of the matrix factorized last when `k` has its
-    /// pattern and values within 1e-10 (relative, the rounding of the instants' Δt) — the refinement runs
-    /// against `k` itself, so the solution is `k`'s — else with a new one, kept (the old one freed first).
+    /// A solve with the kept matrix and factorization. `Some((k, false))` (a linear physics): the kept
+    /// factorization serves when `k` has its pattern and values within 1e-10 (relative, the rounding of
+    /// the instants' Δt), else `k` is factorized and kept (the old one freed first); `Some((k, true))`:
+    /// `k` is factorized and kept; `None`: the kept ones serve (a Newton correction with the matrix of
+    /// an earlier iteration). The refinement runs against the kept matrix, so the solution is its own.
     /// Whether it factorized.
     fn solve_kept(
         &self,
-        k: faer::sparse::SparseColMat<usize, f64>,
+        new: Option<(faer::sparse::SparseColMat<usize, f64>, bool)>,
         rhs: &[f64],
         opts: &SolverOptions,
     ) -> std::result::Result<(solve::Solution, bool), solve::SolveError> {
         let mut kept = self.kept.borrow_mut();
-        let close = |m: &faer::sparse::SparseColMat<usize, f64>| {
-            let scale = m.val().iter().fold(0.0f64, |a, v| a.max(v.abs()));
-            m.col_ptr() == k.col_ptr()
-                && m.row_idx() == k.row_idx()
-                && m.val().iter().zip(k.val()).all(|(a, b)| (a - b).abs() <= 1e-10 * scale)
+        let same = match &new {
+            None => true,
+            Some((_, true)) => false,
+            Some((k, false)) => kept.as_ref().is_some_and(|(m, _)| {
+                let scale = m.val().iter().fold(0.0f64, |a, v| a.max(v.abs()));
+                m.col_ptr() == k.col_ptr()
+                    && m.row_idx() == k.row_idx()
+                    && m.val().iter().zip(k.val()).all(|(a, b)| (a - b).abs() <= 1e-10 * scale)
+            }),
         };
-        let same = kept.as_ref().is_some_and(|(m, _)| close(m));
-        if !same {
+        if let (false, Some((k, _))) = (same, new) {
             *kept = None;
             let f = solve::factorize_with(k.as_ref(), opts, &mut self.analysis.borrow_mut())?;
-            *kept = Some((k.clone(), f));
+            *kept = Some((k, f));
         }
-        let (_, f) = kept.as_mut().expect("factorized above");
+        let Some((k, f)) = kept.as_mut() else {
+            return Err(solve::SolveError::Internal("no matrix is held for this Newton correction".into()));
+        };
         let started = std::time::Instant::now();
         let (x, residual, refinements) = solve::solve_refined_or_lu(f, k.as_ref(), rhs, opts)?;
         solve::check_solution(k.as_ref(), &x, rhs, residual, opts)?;
@@ -429,6 +493,12 @@ impl<'a, P: Physics> Driver<'a, P> {
         let pattern = SparsityPattern::build(&map, &elems);
         let fr = Frame { step, pattern, fext };
         let x0 = x.clone();
+        // NEWTON REAC_ITER (Code_Aster's semantics): the matrix is assembled again at the corrections
+        // whose number is a multiple of it (1: every one, full Newton; 0: none, the prediction's matrix
+        // serves every correction of the step); the others solve with the matrix held last.
+        let reac = if self.phys.linear() { 1 } else { self.cfg.reac_iter };
+        let modified = reac != 1;
+        let mut held = false;
         let mut unew = match self.phys.prediction() {
             Prediction::Tangent => {
                 // The tangent and internal forces of the start state, the prescribed increments on the
@@ -436,7 +506,9 @@ impl<'a, P: Physics> Driver<'a, P> {
                 let map_pred = DofMap::build(n, &incr)
                     .map_err(|e| self.cfg.err("EXCIT", format!("incompatible kinematic conditions: {e}")))?;
                 let pred = self.assemble(&fr, &map_pred, x, state, log)?;
-                let dx = self.factor_solve(&map_pred, pred.k, pred.rhs, t1, log)?;
+                let k = pred.k.expect("assembled with its tangent");
+                let k = if modified { Matrix::Hold(k) } else { Matrix::Once(k) };
+                let dx = self.factor_solve(&map_pred, k, pred.rhs, t1, log)?;
                 x.iter().zip(map_pred.expand(&dx)).map(|(a, b)| a + b).collect()
             }
             Prediction::Imposed => {
@@ -446,13 +518,21 @@ impl<'a, P: Physics> Driver<'a, P> {
                 map_values.expand(&kept)
             }
         };
+        held = held || (modified && self.phys.prediction() == Prediction::Tangent);
         // Corrections made (the prediction's solve counts as the first for the test).
         let predicted = self.phys.prediction() == Prediction::Tangent;
         let mut iters = 0;
         let mut history = Vec::new();
         loop {
-            let now = self.assemble(&fr, &map, &unew, state, log)?;
-            let (rel, abs, reference, vanished) = self.residual(&map, &free, &fr, &x0, &unew, &now.fint, &now.state);
+            // The correction this assembly serves (the prediction was the first).
+            let next = iters + usize::from(predicted);
+            let fresh = !held || (reac > 0 && next % reac == 0);
+            let Assembled { k, rhs, fint, state: trial } = if fresh {
+                self.assemble(&fr, &map, &unew, state, log)?
+            } else {
+                self.assemble_residual(&fr, &map, &unew, state, log)?
+            };
+            let (rel, abs, reference, vanished) = self.residual(&map, &free, &fr, &x0, &unew, &fint, &trial);
             history.push(rel);
             let solved = predicted || iters > 0;
             let done = if self.phys.linear() {
@@ -464,7 +544,7 @@ impl<'a, P: Physics> Driver<'a, P> {
             };
             if done {
                 *x = unew;
-                *state = now.state;
+                *state = trial;
                 log.steps += 1;
                 log.iterations += iters;
                 if !vanished {
@@ -494,7 +574,15 @@ impl<'a, P: Physics> Driver<'a, P> {
                     e
                 })
                 .map_err(Failure::Fatal)?;
-            let dx = self.factor_solve(&map, now.k, now.rhs, t1, log)?;
+            let k = match k {
+                Some(k) if modified => {
+                    held = true;
+                    Matrix::Hold(k)
+                }
+                Some(k) => Matrix::Once(k),
+                None => Matrix::Held,
+            };
+            let dx = self.factor_solve(&map, k, rhs, t1, log)?;
             let full = map.expand(&dx);
             let rho = match &self.cfg.line_search {
                 Some(ls) => self.line_search(ls, &fr, &map, &unew, &full, &dx, state)?,

@@ -174,6 +174,9 @@ pub struct Settings {
     pub sief: bool,
     /// RECH_LINEAIRE along each Newton correction but the first of a step.
     pub line_search: Option<LineSearch>,
+    /// NEWTON REAC_ITER: the corrections whose number is a multiple of it assemble the tangent again (1:
+    /// every one; 0: none, the prediction's matrix serves the whole step).
+    pub reac_iter: usize,
     /// THER_LINEAIRE, THER_NON_LINE: the θ-scheme, the initial state, RESULTAT continued.
     pub heat: Option<HeatSettings>,
 }
@@ -308,6 +311,7 @@ impl Settings {
             contact,
             sief,
             line_search: None,
+            reac_iter: 1,
             heat: None,
         })
     }

@@ -83,11 +83,12 @@ fn run(ctx: &mut Ctx, a: &Args, command: Command) -> Result<Option<ConceptData>>
     let total = t_all.elapsed().as_secs_f64();
     let (t_fact, t_solve) = ((t.symbolic + t.factorization + t.condition).as_secs_f64(), t.solve.as_secs_f64());
     let mut notes = String::new();
-    if let Some(r) = heat.reac_iter.filter(|&r| r != 1) {
-        notes.push_str(&format!(
-            "  NEWTON REAC_ITER={r}: the tangent is assembled again at every iteration (full Newton); the converged \
-             temperatures are the same within CONVERGENCE\n"
-        ));
+    if heat.nonlinear {
+        notes.push_str(&match cfg.reac_iter {
+            0 => "  NEWTON REAC_ITER=0: the tangent of each step's start serves all its corrections\n".to_string(),
+            1 => "  NEWTON REAC_ITER=1: the tangent is assembled again at every correction\n".to_string(),
+            r => format!("  NEWTON REAC_ITER={r}: the tangent is assembled again at every {r}th correction\n"),
+        });
     }
     if let Some(ls) = &cfg.line_search {
         notes.push_str(&format!(

@@ -42,8 +42,6 @@ pub struct HeatSettings {
     pub reuse: Option<(ConceptRef, i64)>,
     /// Whether the initial state is stored (not when it is RESULTAT's own last step).
     pub store_initial: bool,
-    /// NEWTON REAC_ITER as given (the log says how we take it).
-    pub reac_iter: Option<i64>,
 }
 
 fn nonlinear_item(items: &[LoadItem]) -> Option<&'static str> {
@@ -145,7 +143,7 @@ fn initial_state(a: &Args, sites: &mut BTreeMap<String, Span>) -> Result<HeatIni
 /// THER_NON_LINE's Newton options: COMPORTEMENT (THER_NL), METHODE, NEWTON, RECH_LINEAIRE (Code_Aster
 /// turns it on whenever NEWTON is given: its RESI_LINE_RELA and ITER_LINE_MAXI are the former place of
 /// RECH_LINEAIRE's), CONVERGENCE and AFFICHAGE (display only).
-fn newton(a: &Args) -> Result<(Convergence, Option<LineSearch>, Option<i64>)> {
+fn newton(a: &Args) -> Result<(Convergence, Option<LineSearch>, usize)> {
     for occ in a.facts("COMPORTEMENT") {
         let rel = occ.text("RELATION").unwrap_or("THER_NL");
         if rel != "THER_NL" {
@@ -161,13 +159,15 @@ fn newton(a: &Args) -> Result<(Convergence, Option<LineSearch>, Option<i64>)> {
     }
     let conv = Convergence::from_args(a)?;
     let nw = a.fact("NEWTON");
-    let mut reac_iter = None;
+    // THER_NON_LINE's REAC_ITER is 0 when not given: the tangent of the step's start serves every
+    // correction.
+    let mut reac_iter = 0;
     if let Some(f) = nw {
         let _ = (f.text("PREDICTION"), f.text("MATRICE"));
         if f.int("REAC_INCR").is_some_and(|r| r != 1) {
             return Err(f.err("REAC_INCR", "only REAC_INCR=1 (the tangent at every step's start) is supported yet"));
         }
-        reac_iter = f.int("REAC_ITER");
+        reac_iter = f.int("REAC_ITER").map_or(0, |r| r.max(0) as usize);
     }
     let rl = a.fact("RECH_LINEAIRE");
     let line_search = if a.given("NEWTON") || rl.is_some() {
@@ -232,7 +232,7 @@ pub(super) fn read(a: &Args, command: Command, model: ConceptRef) -> Result<Sett
         excit.push(Excit { load, fonc_mult, span: occ.span, fonc_mult_span: occ.span_of("FONC_MULT") });
     }
     let (conv, line_search, reac_iter) =
-        if nonlinear { newton(a)? } else { (Convergence { span: a.span, ..Convergence::default() }, None, None) };
+        if nonlinear { newton(a)? } else { (Convergence { span: a.span, ..Convergence::default() }, None, 1) };
     // THER_NON_LINE without TYPE_CALCUL, INCREMENT and a transient ETAT_INIT is steady.
     let steady = a.text("TYPE_CALCUL") == Some("STAT")
         || (nonlinear
@@ -306,6 +306,7 @@ pub(super) fn read(a: &Args, command: Command, model: ConceptRef) -> Result<Sett
         contact: None,
         sief: false,
         line_search,
-        heat: Some(HeatSettings { nonlinear, theta, initial, reuse, store_initial, reac_iter }),
+        reac_iter,
+        heat: Some(HeatSettings { nonlinear, theta, initial, reuse, store_initial }),
     })
 }
