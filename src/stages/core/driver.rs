@@ -308,20 +308,24 @@ impl<'a, P: Physics> Driver<'a, P> {
         let names = |dofs: &[usize]| -> String {
             dofs.iter().take(6).map(|&d| phys.label(map.free_to_full[d])).collect::<Vec<_>>().join(", ")
         };
-        let bad_f: Vec<usize> = (0..rhs.len()).filter(|&d| !rhs[d].is_finite()).collect();
-        if !bad_f.is_empty() {
-            return Err(Failure::Fatal(self.cfg.err(
+        let check_rhs = |rhs: &[f64]| {
+            let bad_f: Vec<usize> = (0..rhs.len()).filter(|&d| !rhs[d].is_finite()).collect();
+            if bad_f.is_empty() {
+                return Ok(());
+            }
+            Err(Failure::Fatal(self.cfg.err(
                 "EXCIT",
                 format!(
                     "the loads are not finite (nan or infinite) at unknowns {}: check the values of the loads",
                     names(&bad_f)
                 ),
-            )));
-        }
+            )))
+        };
         let (mut k, hold) = match matrix {
             Matrix::Once(k) => (k, false),
             Matrix::Hold(k) => (k, true),
             Matrix::Held => {
+                check_rhs(&rhs)?;
                 let opts = SolverOptions { condition: false, ..self.opts };
                 let sol = self.solve_kept(None, &rhs, &opts);
                 return self.account(map, sol, t1, log);
@@ -354,6 +358,7 @@ impl<'a, P: Physics> Driver<'a, P> {
                 ),
             )));
         }
+        check_rhs(&rhs)?;
         // The condition number is estimated on the first factorization only: it costs about ten solves,
         // as much as the factorization itself on large 2D systems, and the steps that follow change the
         // tangent little (NPREC still checks every factorization's pivots).
@@ -478,6 +483,13 @@ impl<'a, P: Physics> Driver<'a, P> {
         state: &mut P::State,
         log: &mut StepLog,
     ) -> std::result::Result<(), Failure> {
+        // Every step, linear ones included, stops at the run's time limit.
+        crate::diag::check_deadline()
+            .map_err(|mut e| {
+                e.msg = format!("{} at the step to INST={t1}", e.msg);
+                e.at(self.cfg.span)
+            })
+            .map_err(Failure::Fatal)?;
         let n = self.phys.unknowns();
         let step = StepInfo { t0, t1 };
         let cons = self.loads.conditions(self.phys, t1)?;

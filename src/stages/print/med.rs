@@ -356,8 +356,10 @@ pub fn impr_resu_med(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let unit = a.int("UNITE").unwrap_or(80);
     let path = ctx.io.unit_path(unit, true).map_err(|e| a.locate(e, "UNITE"))?;
 
-    // A unit written earlier in the run is extended, as Code_Aster does.
-    let existing = if path.exists() { med::list_meshes(&path).map_err(|e| a.locate(e, "UNITE"))? } else { Vec::new() };
+    // A unit written earlier in the run is extended, as Code_Aster does; an empty file (DEFI_FICHIER's, or
+    // a unit opened and never written) is a new one.
+    let written = std::fs::metadata(&path).is_ok_and(|m| m.len() > 0);
+    let existing = if written { med::list_meshes(&path).map_err(|e| a.locate(e, "UNITE"))? } else { Vec::new() };
     let reuse_mesh = existing.contains(&mesh_name);
     if !existing.is_empty() && !reuse_mesh {
         return Err(a.err(

@@ -95,6 +95,25 @@ fn sixx_check() -> String {
     )
 }
 
+/// A unit that DEFI_FICHIER opened and nothing wrote yet (an empty file) takes a new MED file, as in
+/// Code_Aster (zzzz162a/b stopped on "not an HDF5 file").
+#[test]
+fn impr_resu_writes_a_new_med_file_on_a_unit_defi_fichier_opened() {
+    let dir = scratch!("empty_unit");
+    let mesh = box_mesh(&dir, "QUAD8", "4,2", "2,1");
+    let (a, b) = (dir.join("a.rmed"), dir.join("b.rmed"));
+    let test = format!(
+        r#"DEFI_FICHIER(FICHIER="MED_70", UNITE=70, TYPE="LIBRE")
+IMPR_RESU(FORMAT="MED", UNITE=70, RESU=_F(RESULTAT=RESU))
+R3 = LIRE_RESU(TYPE_RESU="EVOL_ELAS", FORMAT="MED", UNITE=70, MODELE=MO, TOUT_ORDRE="OUI",
+               FORMAT_MED=_F(NOM_CHAM="SIEF_ELGA", NOM_RESU="RESU"))
+TEST_RESU(RESU=_F(RESULTAT=R3, NUME_ORDRE=1, NOM_CHAM="SIEF_ELGA", MAILLE="M13", POINT=9, NOM_CMP="SIXX",
+                  VALE_CALC={SIXX_M1_9:?}))"#
+    );
+    let mess = run(&dir, "empty_unit", &statics(100.0, "", &test), &[(20, &mesh), (80, &a), (81, &b)]);
+    assert!(mess.contains(" 1 OK, 0 NOOK"), "{mess}");
+}
+
 #[test]
 fn statics_fields_go_through_med_and_back() {
     let dir = scratch!("statics");
