@@ -105,14 +105,17 @@ pub fn update(
     let m = prev.m + phi * rho * (1.0 + eps_v) - prev.phi * prev.rho * (1.0 + prev.eps_v());
     let kappa = mat.mobility();
     let w: [f64; 3] = std::array::from_fn(|i| rho * kappa * (-grad_p[i] + rho * g[i]));
-    // ∂φ/∂ε_v = b − φ, ∂φ/∂p = (b − φ)/K_s, ∂ρ/∂p = ρ/K_w.
-    let dphi_de = b - phi;
+    // ∂φ/∂p = (b − φ)/K_s, ∂ρ/∂p = ρ/K_w.
     let dphi_dp = (b - phi) * inv_ks;
     let drho_dp = rho * mat.inv_kw;
+    // The mass content's tangent as Code_Aster assembles it (`dmdepv`, `dmwdp1`): ρb and ρ(φ/K_w + c_s),
+    // the derivatives of M without the (1 + ε_v) factor and the change of φ with ε_v — a tangent within
+    // O(ε_v) of the exact one. The converged state is the same; the prediction, which Code_Aster's mixed
+    // criterion often accepts as it is, carries that difference, and so do its non-regression values.
     let der = Derivatives {
         dsigp_dp: -b,
-        dm_depsv: rho * (dphi_de * (1.0 + eps_v) + phi),
-        dm_dp: (1.0 + eps_v) * (dphi_dp * rho + phi * drho_dp),
+        dm_depsv: rho * b,
+        dm_dp: rho * (phi * mat.inv_kw + dphi_dp),
         dw_dgradp: -rho * kappa,
         dw_dp: std::array::from_fn(|i| kappa * drho_dp * (-grad_p[i] + 2.0 * rho * g[i])),
     };
@@ -148,12 +151,16 @@ mod tests {
             *e += h / 3.0;
         }
         let (s2, _) = update(&m, &d, &prev, &e2, p, &gp, &g).unwrap();
+        // The mass content's tangent is Code_Aster's (ρb, ρ(φ/K_w + c_s)): exact to O(ε_v).
+        let eps_v = eps[0] + eps[1] + eps[2];
+        assert_eq!(der.dm_depsv, s.rho * m.biot);
+        assert_eq!(der.dm_dp, s.rho * (s.phi * m.inv_kw + (m.biot - s.phi) * m.inv_ks()));
         let fd = (s2.m - s.m) / h;
-        assert!((fd - der.dm_depsv).abs() < 1e-5 * der.dm_depsv.abs(), "{fd} {}", der.dm_depsv);
+        assert!((fd - der.dm_depsv).abs() < 2.0 * eps_v.abs() * der.dm_depsv.abs(), "{fd} {}", der.dm_depsv);
         let hp = 10.0;
         let (s3, _) = update(&m, &d, &prev, &eps, p + hp, &gp, &g).unwrap();
         let fd = (s3.m - s.m) / hp;
-        assert!((fd - der.dm_dp).abs() < 1e-5 * der.dm_dp.abs(), "{fd} {}", der.dm_dp);
+        assert!((fd - der.dm_dp).abs() < 2.0 * eps_v.abs() * der.dm_dp.abs(), "{fd} {}", der.dm_dp);
         for i in 0..3 {
             let fd = (s3.w[i] - s.w[i]) / hp;
             assert!((fd - der.dw_dp[i]).abs() < 1e-5 * der.dw_dp[i].abs().max(1e-30), "{i}: {fd} {:?}", der.dw_dp);

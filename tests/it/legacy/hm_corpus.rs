@@ -25,6 +25,15 @@ fn corpus_hm_cases_pass() {
     run_corpus_cases(&scratch!("corpus"), &CASES);
 }
 
+/// A compressible liquid (THM_LIQU UN_SUR_K = 0.5e-9) on D_PLAN_HMS and D_PLAN_HM_SI, PRE1 prescribed by
+/// AFFE_CHAR_CINE: Code_Aster accepts each step's prediction (its relative criterion mixes the mechanical
+/// reactions with the hydraulic rows), so its values carry its tangent of the mass content (ρb, ρ(φ/K_w +
+/// c_s)); with the exact tangent they ended 2e-5 away (NOOK at t = 1 s and 10 s).
+#[test]
+fn compressible_liquid_predictions_carry_code_asters_tangent() {
+    run_corpus_cases(&scratch!("corpus_compressible"), &[("wtnp129a", 26), ("wtnp129c", 52)]);
+}
+
 /// wtnl100b on 3D_HMS elements (the corpus has it on 3D_HMD): SIGM_ELNO is Code_Aster's fit through every
 /// point of the FPG8NOS family, the vertex points holding the effective stress of a Gauss point, and
 /// SIEQ_ELNO follows. At NO83 of MA16, first instant, Code_Aster's NON_REGRESSION VMIS is 0.4085 (we
