@@ -204,8 +204,9 @@ fn lire_resu_type(a: &Args) -> Result<ConceptKind> {
     match a.text("TYPE_RESU") {
         Some("EVOL_ELAS") => Ok(ConceptKind::EvolElas),
         Some("EVOL_NOLI") => Ok(ConceptKind::EvolNoli),
+        Some("EVOL_THER") => Ok(ConceptKind::EvolTher),
         Some(other) => Err(Error::unsupported(format!(
-            "LIRE_RESU TYPE_RESU='{other}' is not supported yet (EVOL_ELAS and EVOL_NOLI are)"
+            "LIRE_RESU TYPE_RESU='{other}' is not supported yet (EVOL_ELAS, EVOL_NOLI and EVOL_THER are)"
         ))
         .at(a.span_of("TYPE_RESU"))),
         None => Err(missing(a, "TYPE_RESU")),
@@ -213,10 +214,10 @@ fn lire_resu_type(a: &Args) -> Result<ConceptKind> {
 }
 
 fn lire_resu() -> Command {
-    let excit = |extra: Vec<Entry>| {
-        fact("EXCIT", with(kws![simp("CHARGE").co(&[ConceptKind::CharMeca]).o(), simp("FONC_MULT").co(FUNCS),], extra))
-            .many()
+    let excit = |loads: &'static [ConceptKind], extra: Vec<Entry>| {
+        fact("EXCIT", with(kws![simp("CHARGE").co(loads).o(), simp("FONC_MULT").co(FUNCS),], extra)).many()
     };
+    const MECA: &[ConceptKind] = &[ConceptKind::CharMeca, ConceptKind::CharCineMeca];
     Command::new("LIRE_RESU", "Read the fields of a result from a file (MED) into a result concept.")
         .produces_dyn(lire_resu_type)
         .reuse()
@@ -255,19 +256,26 @@ fn lire_resu() -> Command {
                 ),
                 bloc(
                     eq("TYPE_RESU", "EVOL_ELAS"),
-                    kws![excit(kws![simp("TYPE_CHARGE").txt().d("FIXE_CSTE").one_of(&["FIXE_CSTE"])])]
+                    kws![excit(MECA, kws![simp("TYPE_CHARGE").txt().d("FIXE_CSTE").one_of(&["FIXE_CSTE"])])]
+                ),
+                bloc(
+                    eq("TYPE_RESU", "EVOL_THER"),
+                    kws![excit(&[ConceptKind::CharTher, ConceptKind::CharCineTher], kws![])]
                 ),
                 bloc(
                     eq("TYPE_RESU", "EVOL_NOLI"),
                     kws![
                         super::solve::comportement(),
                         simp("VERI_VARI").txt().d("OUI").one_of(OUI_NON),
-                        excit(kws![simp("TYPE_CHARGE").txt().d("FIXE_CSTE").one_of(&[
-                            "FIXE_CSTE",
-                            "FIXE_PILO",
-                            "SUIV",
-                            "DIDI"
-                        ])]),
+                        excit(
+                            MECA,
+                            kws![simp("TYPE_CHARGE").txt().d("FIXE_CSTE").one_of(&[
+                                "FIXE_CSTE",
+                                "FIXE_PILO",
+                                "SUIV",
+                                "DIDI"
+                            ])]
+                        ),
                     ]
                 ),
                 bloc(

@@ -272,7 +272,9 @@ pub fn lire_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     for occ in a.facts("EXCIT") {
         // A result holds its loads without multiplier: FONC_MULT and loads other than FIXE_CSTE would be lost.
         occ.refuse(&["FONC_MULT"])?;
-        if let Some(t) = occ.text("TYPE_CHARGE").filter(|t| *t != "FIXE_CSTE") {
+        // EVOL_THER's occurrences have no TYPE_CHARGE.
+        let kind = occ.declares("TYPE_CHARGE").then(|| occ.text("TYPE_CHARGE")).flatten();
+        if let Some(t) = kind.filter(|t| *t != "FIXE_CSTE") {
             return Err(occ.err("TYPE_CHARGE", format!("TYPE_CHARGE='{t}' is not supported yet (FIXE_CSTE is)")));
         }
         loads.push(occ.req_concept("CHARGE")?);

@@ -95,6 +95,35 @@ fn sixx_check() -> String {
     )
 }
 
+/// A transient heat result (EVOL_THER: TEMP and FLUX_ELNO over four steps) written by IMPR_RESU, read
+/// back by LIRE_RESU TYPE_RESU='EVOL_THER' and written again: the same file to the bit.
+#[test]
+fn heat_fields_go_through_med_and_back() {
+    let dir = scratch!("heat");
+    let mesh = box_mesh(&dir, "QUAD8", "4,2", "2,1");
+    let (a, b) = (dir.join("a.rmed"), dir.join("b.rmed"));
+    let src = r#"DEBUT()
+MA = LIRE_MAILLAGE(FORMAT="MED", UNITE=20)
+MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT="OUI", PHENOMENE="THERMIQUE", MODELISATION="PLAN"))
+MAT = DEFI_MATERIAU(THER=_F(LAMBDA=2.0, RHO_CP=3.0))
+CHMAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT="OUI", MATER=MAT))
+CH = AFFE_CHAR_THER(MODELE=MO, TEMP_IMPO=(_F(GROUP_NO="GAUCHE", TEMP=100.0), _F(GROUP_NO="DROITE", TEMP=20.0)))
+L = DEFI_LIST_REEL(DEBUT=0.0, INTERVALLE=_F(JUSQU_A=1.0, NOMBRE=4))
+TH = THER_LINEAIRE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=CH), INCREMENT=_F(LIST_INST=L),
+                   ETAT_INIT=_F(VALE=20.0))
+TH = CALC_CHAMP(reuse=TH, RESULTAT=TH, THERMIQUE=("FLUX_ELNO",))
+IMPR_RESU(FORMAT="MED", UNITE=80, RESU=_F(RESULTAT=TH))
+T2 = LIRE_RESU(TYPE_RESU="EVOL_THER", FORMAT="MED", UNITE=80, MODELE=MO, TOUT_ORDRE="OUI", EXCIT=_F(CHARGE=CH),
+               FORMAT_MED=(_F(NOM_CHAM="TEMP", NOM_RESU="TH"), _F(NOM_CHAM="FLUX_ELNO", NOM_RESU="TH")))
+IMPR_RESU(FORMAT="MED", UNITE=81, RESU=_F(RESULTAT=T2, NOM_RESU_MED="TH"))
+FIN()
+"#;
+    run(&dir, "heat", src, &[(20, &mesh), (80, &a), (81, &b)]);
+    assert_round_trip(&a, &b, &["TH______TEMP", "TH______FLUX_ELNO"]);
+    let temp = med::read_field(&b, "TH______TEMP").unwrap();
+    assert_eq!(temp.steps.len(), 5, "the initial state and four steps");
+}
+
 /// A unit that DEFI_FICHIER opened and nothing wrote yet (an empty file) takes a new MED file, as in
 /// Code_Aster (zzzz162a/b stopped on "not an HDF5 file").
 #[test]
