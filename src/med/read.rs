@@ -76,10 +76,11 @@ fn read_names<const N: usize>(path: &Path, ds: &Dataset) -> Result<Vec<String>> 
     let is_string =
         matches!(dtype.to_descriptor(), Ok(TypeDescriptor::FixedAscii(_) | TypeDescriptor::FixedUnicode(_)));
     if is_string && dsize == 1 {
-        // One character per element, a NUL read as an empty string.
+        // One character per element, a NUL read as an empty string; a byte past the last whole name (the
+        // C string's terminator some writers keep: sslp320c.21 has 16 × 1271 + 1) is not a name.
         let raw = ds.read_raw::<FixedAscii<1>>().map_err(|e| h5err(path, &what, e))?;
         let bytes: Vec<i8> = raw.iter().map(|c| c.as_bytes().first().map_or(0, |&b| b as i8)).collect();
-        Ok(bytes.chunks(N).map(decode_name).collect())
+        Ok(bytes.chunks_exact(N).map(decode_name).collect())
     } else if is_string && dsize == N {
         let raw = ds.read_raw::<FixedAscii<N>>().map_err(|e| h5err(path, &what, e))?;
         Ok(raw.iter().map(|n| n.as_str().trim_end().to_string()).collect())
@@ -88,7 +89,7 @@ fn read_names<const N: usize>(path: &Path, ds: &Dataset) -> Result<Vec<String>> 
         Ok(raw.iter().map(|n| decode_name(n)).collect())
     } else if dsize == 1 {
         let raw = ds.read_raw::<i8>().map_err(|e| h5err(path, &what, e))?;
-        Ok(raw.chunks(N).map(decode_name).collect())
+        Ok(raw.chunks_exact(N).map(decode_name).collect())
     } else {
         Err(ioerr(path, format!("{what}: unexpected element size {dsize} (expected {N})")))
     }

@@ -78,11 +78,12 @@ pub fn read(src: &str, file: &str) -> Result<Mesh, String> {
         }
         let mut body = &items[start..k.min(items.len())];
         let closed = k < items.len();
-        // Options on the header's line (`COOR_3D NOBJ=13`, `GROUP_NO NOM=BAS`): NOM names a group; the
-        // counts are only hints.
+        // The header's options (`COOR_3D NOBJ=13`, `GROUP_NO NOM=BAS`, and on the lines after it the
+        // `NUMIN=1 NUMAX=148`, `AUTEUR=… DATE=…` that interfaces write): NOM names a group; the others are
+        // only hints.
         let mut nom: Option<&Item> = None;
         while let [key, eq, value, rest @ ..] = body {
-            if key.line != head.line || eq.text != "=" {
+            if eq.text != "=" {
                 break;
             }
             if key.text.eq_ignore_ascii_case("NOM") {
@@ -274,6 +275,19 @@ mod tests {
         assert_eq!(m.node_groups["BAS"], [0, 1, 2, 3]);
         assert_eq!(m.node_groups["DIAG"], [0, 6]);
         assert_eq!(m.cell_groups["HAUT"], [0]);
+    }
+
+    /// Header options on the lines after the section's word, as the IDEAS interface writes them
+    /// (sdls112a.20).
+    #[test]
+    fn header_options_on_the_following_lines() {
+        let src = CUBE.replace(
+            "COOR_3D\n",
+            "COOR_3D    NOM=INDEFINI    NBOBJ=8\n           NUMIN=1   NUMAX=8\n   AUTEUR=INTERF_ST/TF   DATE=07/02/2005\n",
+        );
+        let m = read(&src, "cube.mail").unwrap();
+        assert_eq!(m.node_names.len(), 8);
+        assert_eq!(m.coords[1], [3.0, 0.0, 0.0]);
     }
 
     #[test]

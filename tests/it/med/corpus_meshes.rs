@@ -1,5 +1,5 @@
 //! Every mesh of Code_Aster's 2025 verification corpus (../shared/corpus/astest-2025) reads — MED
-//! (3.x/4.x and 2.x layouts), `.mail`, Gmsh `.msh`, Cast3M `.mgib` and I-DEAS `.msup` — and its node
+//! (3.x/4.x and 2.x layouts; also the MED files exports name under a unit number), `.mail`, Gmsh `.msh`, Cast3M `.mgib` and I-DEAS `.msup` — and its node
 //! and cell counts agree with a reader independent of ours (scripts/mesh_counts.py: MED-fichier's
 //! own API through python3-med, meshio and gmsh for Gmsh and I-DEAS files, small separate parsers for
 //! `.mail` and `.mgib`). Skips with a message where the corpus or a reader is absent.
@@ -58,7 +58,9 @@ fn every_corpus_mesh_reads_with_the_counts_of_an_independent_reader() {
     let with = |exts: &[&str]| -> Vec<PathBuf> {
         all.iter().filter(|p| p.extension().is_some_and(|x| exts.iter().any(|e| x == *e))).cloned().collect()
     };
-    let (med, text, mut gmsh) = (with(&["mmed", "med"]), with(&["mail", "mgib"]), with(&["msh", "msup"]));
+    let (mut med, text, mut gmsh) = (with(&["mmed", "med"]), with(&["mail", "mgib"]), with(&["msh", "msup"]));
+    // MED files an `.export` names as meshes under a unit number (`F mmed sslp320c.21 D 21`).
+    med.extend(numbered_med_meshes(&dir, &all));
     // Some `.msup` files of the corpus are not meshes (interspectra for LIRE_INTE_SPEC, results for
     // LIRE_RESU): a universal file of a mesh has a dataset of nodes (15, 781 or 2411).
     gmsh.retain(|p| p.extension().is_some_and(|x| x == "msh") || is_universal_mesh(p));
@@ -129,6 +131,30 @@ fn every_corpus_mesh_reads_with_the_counts_of_an_independent_reader() {
         failures.len()
     );
     assert!(failures.is_empty(), "{} meshes fail:\n{}", failures.len(), failures.join("\n"));
+}
+
+/// The HDF5 files that an `.export` of `dir` names with the type `mmed` under another extension than
+/// `.mmed`/`.med` (a unit number mostly).
+fn numbered_med_meshes(dir: &Path, all: &[PathBuf]) -> Vec<PathBuf> {
+    let mut out = std::collections::BTreeSet::new();
+    for e in all.iter().filter(|p| p.extension().is_some_and(|x| x == "export")) {
+        let text = std::fs::read_to_string(e).unwrap_or_default();
+        for line in text.lines() {
+            let w: Vec<&str> = line.split_whitespace().collect();
+            if let ["F", "mmed", file, ..] = w[..] {
+                let p = dir.join(file);
+                let ext = p.extension().map(|x| x.to_string_lossy().into_owned()).unwrap_or_default();
+                let mut head = [0u8; 4];
+                let hdf5 = std::fs::File::open(&p)
+                    .and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head))
+                    .is_ok_and(|()| &head == b"\x89HDF");
+                if ext != "mmed" && ext != "med" && hdf5 {
+                    out.insert(p);
+                }
+            }
+        }
+    }
+    out.into_iter().collect()
 }
 
 /// Does the I-DEAS universal file `p` hold a dataset of nodes (15, 781, 2411)?
