@@ -512,6 +512,33 @@ impl Thermal {
         Ok((Field::Elga { components: names.clone(), cells: elga }, Field::Elno { components: names, cells: elno }))
     }
 
+    /// `SOUR_ELGA`, the heat that an electric potential computed as a temperature dissipates (Joule
+    /// heating, Code_Aster's te0318): the flux `−λ∇T` averaged over the cell's `RIGI` points (a plain
+    /// mean), and `|q̄|²/λ` at each point. Linear laws only (`THER`, `THER_FO`), as Code_Aster's.
+    pub fn sour_elga(&self, temps: &[f64], inst: f64) -> Result<Field, Error> {
+        let mesh = &*self.mesh;
+        let mut cells = vec![None; mesh.cells.len()];
+        for &c in &self.bulk {
+            let (md, _) = self.elements[c].expect("a bulk cell has its element");
+            let law = self.laws[c].as_ref().expect("a bulk cell has its law");
+            let Law::Linear { lambda, .. } = &**law else {
+                return Err(Error::runtime(format!(
+                    "cell {}: SOUR_ELGA takes a THER material (LAMBDA), not THER_NL",
+                    mesh.cell_names[c]
+                )));
+            };
+            let l = lambda.at(inst)?;
+            let t = mesh.cell_types[c];
+            let q = element::flux(md, t, &self.coords(c), &self.cell_temps(c, temps), &|_| Ok(Conductivity::Iso(l)))
+                .map_err(cell_err(mesh, c))?;
+            let n = q.len() as f64;
+            let mean: [f64; 3] = std::array::from_fn(|k| q.iter().map(|(_, v)| v[k]).sum::<f64>() / n);
+            let norm2: f64 = mean.iter().map(|v| v * v).sum();
+            cells[c] = Some(vec![norm2 / l; q.len()]);
+        }
+        Ok(Field::Elga { components: vec!["SOUR".into()], cells })
+    }
+
     /// The temperature at the integration points of every bulk cell (`TEMP_ELGA`).
     pub fn temp_elga(&self, temps: &[f64]) -> Result<Field, Error> {
         let mesh = &*self.mesh;

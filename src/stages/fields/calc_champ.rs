@@ -2,7 +2,7 @@
 
 use crate::catalog::args::Args;
 use crate::concepts::model::Role;
-use crate::concepts::result::{Field, ResultData};
+use crate::concepts::result::{Field, ResultData, Step};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
 use crate::fem::postpro::{equivalent_stresses, to_nodes, SIEQ_COMPONENTS};
@@ -110,7 +110,7 @@ enum Asked {
 }
 
 /// NUME_ORDRE / LIST_ORDRE / INST / LIST_INST (CRITERE, PRECISION) against the steps of the result.
-fn asked_orders(a: &Args, steps: &[crate::concepts::result::Step]) -> Result<Asked> {
+fn asked_orders(a: &Args, steps: &[Step]) -> Result<Asked> {
     let list = |kw: &str| -> Result<Option<Vec<f64>>> {
         a.concept(kw).map(|c| c.reals().map_err(|e| a.err(kw, e.msg))).transpose()
     };
@@ -148,6 +148,18 @@ fn asked_orders(a: &Args, steps: &[crate::concepts::result::Step]) -> Result<Ask
     })
 }
 
+/// op0052: a step the result does not have stops the command, with an alarm; the result is unchanged.
+fn nothing_computed(ctx: &mut Ctx, rc: &ConceptRef, what: &str, steps: Vec<Step>) -> Result<ConceptData> {
+    ctx.io.mess(&format!(" <A> <ALGORITH3_41> CALC_CHAMP: result {} has no {what}: nothing is computed\n", rc.label()));
+    let r = rc.result()?;
+    Ok(ConceptData::Result(ResultData {
+        model: r.model.clone(),
+        material: r.material.clone(),
+        loads: r.loads.clone(),
+        steps,
+    }))
+}
+
 pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     const DONE: &[&str] = &[
         "SIGM_ELNO",
@@ -176,7 +188,12 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         ));
     }
     if model.model()?.is_thermal() {
-        return super::thermal::calc_champ_ther(a, &rc, &model, &chmat, steps);
+        let orders = match asked_orders(a, &steps)? {
+            Asked::All => Vec::new(),
+            Asked::Orders(o) => o,
+            Asked::Missing(what) => return Ok(Some(nothing_computed(ctx, &rc, &what, steps)?)),
+        };
+        return super::thermal::calc_champ_ther(a, &rc, &model, &chmat, steps, &orders);
     }
     a.refuse(&["THERMIQUE"])?;
     let hm = model.model()?.elements.iter().flatten().any(|e| e.modelisation.is_hm()) && model.model()?.xfem.is_none();
@@ -222,17 +239,7 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let orders = match asked_orders(a, &steps)? {
         Asked::All => Vec::new(),
         Asked::Orders(o) => o,
-        Asked::Missing(what) => {
-            // op0052: a step the result does not have stops the command, with an alarm; the result is unchanged.
-            ctx.io.mess(&format!(
-                " <A> <ALGORITH3_41> CALC_CHAMP: result {} has no {what}: nothing is computed\n",
-                rc.label()
-            ));
-            let r = rc.result()?;
-            let data =
-                ResultData { model: r.model.clone(), material: r.material.clone(), loads: r.loads.clone(), steps };
-            return Ok(Some(ConceptData::Result(data)));
-        }
+        Asked::Missing(what) => return Ok(Some(nothing_computed(ctx, &rc, &what, steps)?)),
     };
     if hm {
         let passed_over = super::hm::calc_champ_hm(a, &wanted, &mut steps, &model, &chmat, &only, &orders)?;

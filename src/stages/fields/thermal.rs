@@ -1,6 +1,7 @@
 //! CALC_CHAMP on thermal results (THERMIQUE): the flux `−Λ∇T` at the integration points (`FLUX_ELGA`),
 //! extrapolated to the nodes of each cell (`FLUX_ELNO`) and averaged over the cells at each node
-//! (`FLUX_NOEU`); the temperature at the integration points (`TEMP_ELGA`). The laws are taken at each
+//! (`FLUX_NOEU`); the temperature at the integration points (`TEMP_ELGA`); the Joule heat of a potential
+//! computed as a temperature (`SOUR_ELGA`). The laws are taken at each
 //! step's instant and at the points' temperatures.
 
 use crate::catalog::args::Args;
@@ -10,7 +11,7 @@ use crate::diag::Result;
 use crate::stages::core::heat::thermal_problem;
 
 /// The options computed on thermal results.
-pub const OPTIONS: &[&str] = &["FLUX_ELGA", "FLUX_ELNO", "FLUX_NOEU", "TEMP_ELGA"];
+pub const OPTIONS: &[&str] = &["FLUX_ELGA", "FLUX_ELNO", "FLUX_NOEU", "TEMP_ELGA", "SOUR_ELGA"];
 
 pub fn calc_champ_ther(
     a: &Args,
@@ -18,6 +19,7 @@ pub fn calc_champ_ther(
     model: &ConceptRef,
     chmat: &ConceptRef,
     mut steps: Vec<Step>,
+    orders: &[i64],
 ) -> Result<Option<ConceptData>> {
     a.refuse(&[
         "CONTRAINTE",
@@ -32,9 +34,6 @@ pub fn calc_champ_ther(
         "MODELE",
         "CHAM_MATER",
         "EXCIT",
-        "INST",
-        "LIST_INST",
-        "LIST_ORDRE",
         "GROUP_MA",
         "MAILLE",
     ])?;
@@ -47,7 +46,7 @@ pub fn calc_champ_ther(
         wanted.push(o);
     }
     let heat = thermal_problem(model, chmat, None, true, &[]).map_err(|e| e.at(a.span))?;
-    let orders = a.ints("NUME_ORDRE");
+    // The steps NUME_ORDRE / LIST_ORDRE / INST / LIST_INST select (every one when empty).
     for step in steps.iter_mut() {
         if !orders.is_empty() && !orders.contains(&step.nume_ordre) {
             continue;
@@ -69,6 +68,7 @@ pub fn calc_champ_ther(
                         values: crate::fem::postpro::to_nodes(&heat.mesh, cells, components.len()),
                     }
                 }
+                "SOUR_ELGA" => heat.sour_elga(&temps, step.inst).map_err(|e| e.at(a.span))?,
                 _ => heat.temp_elga(&temps).map_err(|e| e.at(a.span))?,
             };
             step.fields.insert(o.clone(), f);
