@@ -180,43 +180,33 @@ impl<'a, P: Physics> Driver<'a, P> {
         }
     }
 
-    /// The reduced residual of the state `x` without the tangent (a correction with the matrix held).
-    fn assemble_residual(
-        &self,
-        fr: &Frame,
-        map: &DofMap,
-        x: &[f64],
-        prev: &P::State,
-        log: &mut StepLog,
-    ) -> std::result::Result<Assembled<P::State>, Failure> {
-        let started = std::time::Instant::now();
-        let mut fint = vec![0.0; x.len()];
-        let state = self.internal(&fr.step, x, prev, None, &mut fint)?;
-        let r: Vec<f64> = fr.fext.iter().zip(&fint).map(|(f, g)| f - g).collect();
-        let rhs = map.reduce_vector(&r);
-        log.assembly += started.elapsed().as_secs_f64();
-        Ok(Assembled { k: None, rhs, fint, state })
-    }
-
-    /// Tangent and residual of the state `x` over the step from the laws' state `prev`, reduced by `map`.
+    /// Tangent (when `tangent`: else a correction solves with the matrix held) and residual of the state
+    /// `x` over the step from the laws' state `prev`, reduced by `map`.
     fn assemble(
         &self,
         fr: &Frame,
         map: &DofMap,
         x: &[f64],
         prev: &P::State,
+        tangent: bool,
         log: &mut StepLog,
     ) -> std::result::Result<Assembled<P::State>, Failure> {
         let started = std::time::Instant::now();
-        let mut asm = Assembler::new(map, fr.pattern.clone());
+        let mut asm = tangent.then(|| Assembler::new(map, fr.pattern.clone()));
         let mut fint = vec![0.0; x.len()];
-        let state = self.internal(&fr.step, x, prev, Some(&mut asm), &mut fint)?;
+        let state = self.internal(&fr.step, x, prev, asm.as_mut(), &mut fint)?;
         let r: Vec<f64> = fr.fext.iter().zip(&fint).map(|(f, g)| f - g).collect();
-        let all: Vec<usize> = (0..x.len()).collect();
-        asm.add_vector(&all, &r);
-        let (k, rhs) = asm.finish();
+        let (k, rhs) = match asm {
+            Some(mut asm) => {
+                let all: Vec<usize> = (0..x.len()).collect();
+                asm.add_vector(&all, &r);
+                let (k, rhs) = asm.finish();
+                (Some(k), rhs)
+            }
+            None => (None, map.reduce_vector(&r)),
+        };
         log.assembly += started.elapsed().as_secs_f64();
-        Ok(Assembled { k: Some(k), rhs, fint, state })
+        Ok(Assembled { k, rhs, fint, state })
     }
 
     /// The internal forces at the state `x` (the loads that depend on it among them), the tangent added
@@ -517,7 +507,7 @@ impl<'a, P: Physics> Driver<'a, P> {
                 // right-hand side.
                 let map_pred = DofMap::build(n, &incr)
                     .map_err(|e| self.cfg.err("EXCIT", format!("incompatible kinematic conditions: {e}")))?;
-                let pred = self.assemble(&fr, &map_pred, x, state, log)?;
+                let pred = self.assemble(&fr, &map_pred, x, state, true, log)?;
                 let k = pred.k.expect("assembled with its tangent");
                 let k = if modified { Matrix::Hold(k) } else { Matrix::Once(k) };
                 let dx = self.factor_solve(&map_pred, k, pred.rhs, t1, log)?;
@@ -539,11 +529,7 @@ impl<'a, P: Physics> Driver<'a, P> {
             // The correction this assembly serves (the prediction was the first).
             let next = iters + usize::from(predicted);
             let fresh = !held || (reac > 0 && next % reac == 0);
-            let Assembled { k, rhs, fint, state: trial } = if fresh {
-                self.assemble(&fr, &map, &unew, state, log)?
-            } else {
-                self.assemble_residual(&fr, &map, &unew, state, log)?
-            };
+            let Assembled { k, rhs, fint, state: trial } = self.assemble(&fr, &map, &unew, state, fresh, log)?;
             let (rel, abs, reference, vanished) = self.residual(&map, &free, &fr, &x0, &unew, &fint, &trial);
             history.push(rel);
             let solved = predicted || iters > 0;
