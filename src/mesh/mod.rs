@@ -198,9 +198,11 @@ impl TextFormat {
 /// The entity that a name of Code_Aster 2025's numbering designates: since version 17 it no longer keeps
 /// the names a mesh file gives its entities and calls node k `N<k>` and cell k `M<k>` (1-based), while
 /// 2020-era files name them as their mesh file does. `name` read that way (`prefix` 'N' or 'M'), among
-/// `count` entities; the stages try it only where no entity bears the name itself.
+/// `count` entities; the stages try it only where no entity bears the name itself. A bare number
+/// designates the entity of that number too, as Code_Aster's `char8_to_int` reads it on a mesh
+/// without names (`MAILLE='12'`, `NOEUD='1'`).
 pub fn numbered(name: &str, prefix: char, count: usize) -> Option<usize> {
-    let digits = name.strip_prefix(prefix)?;
+    let digits = name.strip_prefix(prefix).unwrap_or(name);
     if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) || digits.starts_with('0') {
         return None;
     }
@@ -306,7 +308,9 @@ mod numbered_tests {
     fn numbered_names_are_those_of_code_aster_2025() {
         assert_eq!(numbered("M5", 'M', 5), Some(4));
         assert_eq!(numbered("N1", 'N', 3), Some(0));
-        for bad in ["M6", "M0", "M05", "M", "MA5", "N5"] {
+        assert_eq!(numbered("12", 'M', 12), Some(11));
+        assert_eq!(numbered("1", 'N', 3), Some(0));
+        for bad in ["M6", "M0", "M05", "M", "MA5", "N5", "6", "0", "05", ""] {
             assert_eq!(numbered(bad, 'M', 5), None, "{bad}");
         }
     }

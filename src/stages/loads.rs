@@ -60,6 +60,11 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
             return Err(a.err(n, "not supported yet"));
         }
     }
+    // VERI_NORM='NON' turns off Code_Aster's check of the skins' normals, which we do not make; an
+    // explicit 'OUI' asks for that check and stays refused by name (unread).
+    if let Some(v) = a.items.iter().find(|i| i.name == "VERI_NORM" && !i.defaulted) {
+        v.read.set(a.text("VERI_NORM") == Some("NON"));
+    }
     let mo = a.req_concept("MODELE")?;
     let (mesh, name) = {
         let m = mo.model()?;

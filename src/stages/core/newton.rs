@@ -13,6 +13,31 @@ pub fn instants(a: &Args) -> Result<Vec<f64>> {
     instants_from(a, None)
 }
 
+/// The instants of a DEFI_LIST_REEL or DEFI_LIST_INST concept, strictly increasing; the message of what
+/// is wrong otherwise.
+pub fn list_values(lc: &crate::concepts::ConceptRef) -> std::result::Result<Vec<f64>, String> {
+    let list = match &*lc.data() {
+        ConceptData::ListReal(v) => v.clone(),
+        ConceptData::ListInst(l) => l.instants.clone(),
+        _ => {
+            return Err(format!(
+                "{} ({}) is not a list of instants: give a DEFI_LIST_REEL or a DEFI_LIST_INST",
+                lc.label(),
+                lc.kind()
+            ))
+        }
+    };
+    if let Some(w) = list.windows(2).position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater)) {
+        return Err(format!(
+            "the instants of {} must increase strictly ({} then {})",
+            lc.label(),
+            list[w],
+            list[w + 1]
+        ));
+    }
+    Ok(list)
+}
+
 /// The same, with `init` the instant of ETAT_INIT's state (EVOL_NOLI): when INCREMENT gives neither
 /// INST_INIT nor NUME_INST_INIT, the computation starts there, as Code_Aster's `nmdini`/`nmcrls` do: at
 /// the instant of the list within PRECISION times the smallest step of the list, else at the last
@@ -20,26 +45,7 @@ pub fn instants(a: &Args) -> Result<Vec<f64>> {
 pub fn instants_from(a: &Args, init: Option<f64>) -> Result<Vec<f64>> {
     let inc = a.fact("INCREMENT").ok_or_else(|| a.err("INCREMENT", "INCREMENT is required"))?;
     let lc = inc.req_concept("LIST_INST")?;
-    let list = match &*lc.data() {
-        ConceptData::ListReal(v) => v.clone(),
-        ConceptData::ListInst(l) => l.instants.clone(),
-        _ => {
-            return Err(inc.err(
-                "LIST_INST",
-                format!(
-                    "{} ({}) is not a list of instants: give a DEFI_LIST_REEL or a DEFI_LIST_INST",
-                    lc.label(),
-                    lc.kind()
-                ),
-            ))
-        }
-    };
-    if let Some(w) = list.windows(2).position(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater)) {
-        return Err(inc.err(
-            "LIST_INST",
-            format!("the instants of {} must increase strictly ({} then {})", lc.label(), list[w], list[w + 1]),
-        ));
-    }
+    let list = list_values(&lc).map_err(|m| inc.err("LIST_INST", m))?;
     let prec = inc.real("PRECISION").unwrap_or(1e-6);
     let find = |t: f64, kw: &str| -> Result<usize> {
         list.iter()

@@ -217,7 +217,7 @@ impl Settings {
         let takes = physics.takes();
         let statics = command == Command::MecaStatique;
         if statics {
-            a.refuse(&["CARA_ELEM", "LIST_INST", "SENSIBILITE", "RESULTAT", "INST_FIN"])?;
+            a.refuse(&["CARA_ELEM", "SENSIBILITE", "RESULTAT", "INST_FIN"])?;
         } else {
             a.refuse(NOT_YET)?;
             let refused: Vec<&str> =
@@ -282,8 +282,18 @@ impl Settings {
         let newton_note = if statics { None } else { super::newton::newton_note(a) };
         let solveur = solveur(a)?;
         let (times, subdivision) = if statics {
-            let inst = a.reals("INST").first().copied().unwrap_or(0.0);
-            (vec![inst, inst], None)
+            match a.concept("LIST_INST") {
+                // One linear solve at each instant of the list, numbered from 1.
+                Some(lc) => {
+                    let list = super::newton::list_values(&lc).map_err(|m| a.err("LIST_INST", m))?;
+                    let first = *list.first().ok_or_else(|| a.err("LIST_INST", format!("{} is empty", lc.label())))?;
+                    (std::iter::once(first).chain(list).collect(), None)
+                }
+                None => {
+                    let inst = a.reals("INST").first().copied().unwrap_or(0.0);
+                    (vec![inst, inst], None)
+                }
+            }
         } else {
             // ETAT_INIT's instant (EVOL_NOLI) starts the computation when INCREMENT does not say where.
             let init_inst = initial.as_ref().and_then(|i| i.step).map(|(_, t)| t);

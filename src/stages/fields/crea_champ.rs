@@ -1,4 +1,5 @@
-//! Fields of their own and fields on skins: CREA_CHAMP (AFFE, EXTR, EVAL)
+//! Fields of their own and fields on skins: CREA_CHAMP (AFFE, EXTR from a result or a mesh's geometry,
+//! EVAL)
 //! and CALC_CHAMP's SIRO_ELEM (the stress vector on skin cells).
 //!
 //! SIRO_ELEM follows Code_Aster's plane rosette (`te0554`): the stress of the
@@ -157,8 +158,13 @@ fn affe(a: &Args) -> Result<FieldData> {
 
 fn extr(a: &Args) -> Result<FieldData> {
     let (loc, _) = type_cham(a)?;
-    let rc =
-        a.concept("RESULTAT").ok_or_else(|| a.err("RESULTAT", "only extraction from a result is supported yet"))?;
+    a.refuse(&["TABLE"])?;
+    if let Some(mc) = a.concept("MAILLAGE") {
+        return geometry(a, mc);
+    }
+    let rc = a
+        .concept("RESULTAT")
+        .ok_or_else(|| a.err("RESULTAT", "only extraction from a result or a mesh is supported yet"))?;
     if a.given("TYPE_MAXI") {
         return Err(a.err("TYPE_MAXI", "not supported yet"));
     }
@@ -189,6 +195,22 @@ fn extr(a: &Args) -> Result<FieldData> {
     }
     let mesh_concept = r.model.model()?.mesh_concept.clone();
     Ok(FieldData { mesh_concept, field: field.clone(), functions: None })
+}
+
+/// EXTR from MAILLAGE: NOM_CHAM='GEOMETRIE' is the mesh's coordinates, a NOEU_GEOM_R field of components
+/// X, Y, Z (Code_Aster's `.COORDO` has the three whatever the mesh's dimension).
+fn geometry(a: &Args, mc: ConceptRef) -> Result<FieldData> {
+    let cham = a.req_text("NOM_CHAM")?;
+    if cham != "GEOMETRIE" {
+        return Err(a.err("NOM_CHAM", format!("NOM_CHAM='{cham}' of a mesh is not supported yet (GEOMETRIE is)")));
+    }
+    let t = a.req_text("TYPE_CHAM")?;
+    if t != "NOEU_GEOM_R" {
+        return Err(a.err("TYPE_CHAM", format!("the geometry of a mesh is a NOEU_GEOM_R field, not {t}")));
+    }
+    let values = mc.mesh()?.coords.iter().flatten().copied().collect();
+    let components = ["X", "Y", "Z"].map(String::from).to_vec();
+    Ok(FieldData { mesh_concept: mc, field: Field::Node { components, values }, functions: None })
 }
 
 /// Evaluate the functions of a field by cell (None: the zero function) with

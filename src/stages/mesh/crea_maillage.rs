@@ -1,8 +1,9 @@
 //! CREA_MAILLAGE: a new mesh made from MAILLAGE.
 //!
 //! LINE_QUAD and QUAD_LINE change the degree of cells with Code_Aster 2025's numbering
-//! ([`crate::mesh::convert`]): new nodes are `N` + number, as Code_Aster 2025 shows nodes of meshes
-//! without names. A LINE_QUAD occurrence that gives PREF_NOEUD or PREF_NUME (keywords of the 2020
+//! ([`crate::mesh::convert`]). Code_Aster 2025 builds the new mesh without names, whatever the input
+//! carried: its nodes and cells are `N` / `M` + number, and a file designates them so (a name the
+//! input's file gave no longer designates its node). A LINE_QUAD occurrence that gives PREF_NOEUD or PREF_NUME (keywords of the 2020
 //! syntax, gone in 2025) gets the 2020 operator instead: its numbering and the names PREF_NOEUD +
 //! (PREF_NUME − 1 + k). HEXA20_27 adds face and cell centres with the same module. CREA_MAILLE, CREA_POI1, MODI_MAILLE OPTION='QUAD8_9' and RESTREINT follow
 //! `op0167` and `rdtmai` ([`crate::mesh::derive`]); their 2020 naming keywords (PREF_MAILLE,
@@ -31,7 +32,10 @@ pub fn crea_maillage(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let mesh = c.mesh().map_err(|e| a.locate(e, "MAILLAGE"))?;
     let label = c.label();
     let mut mess = String::new();
-    let out = if let Some(occ) = a.fact("LINE_QUAD") {
+    // Only LINE_QUAD in the 2020 syntax names what it makes; every other operation makes a mesh
+    // without names, as Code_Aster 2025 does (`op0167` and `rdtmai` build no `.NOMNOE` / `.NOMMAI`).
+    let syntax_2020 = a.fact("LINE_QUAD").is_some_and(|o| o.given("PREF_NOEUD") || o.given("PREF_NUME"));
+    let mut out = if let Some(occ) = a.fact("LINE_QUAD") {
         line_quad(&mesh, occ, &label, &mut mess)?
     } else if let Some(occ) = a.fact("QUAD_LINE") {
         quad_line(&mesh, occ, &label, &mut mess)?
@@ -49,6 +53,9 @@ pub fn crea_maillage(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         // The catalogue asks for exactly one operation and the others are refused above.
         return Err(a.err("MAILLAGE", "no operation given"));
     };
+    if !syntax_2020 {
+        number_names(&mut out);
+    }
     if a.int("INFO") == Some(2) {
         mess.push_str(&out.describe("(CREA_MAILLAGE)"));
     }
@@ -116,12 +123,12 @@ fn line_quad(mesh: &Mesh, occ: &Args, label: &str, mess: &mut String) -> Result<
             let _ = writeln!(mess, " <A> CREA_MAILLAGE: LINE_QUAD: there is no linear cell to convert");
         }
     }
-    // A new name must not be the name of a node of the input (meshes that carried their own names).
+    // In the 2020 syntax a new name must not be the name of a node of the input (the mesh keeps its
+    // names there).
     let old: HashSet<&str> = mesh.node_names.iter().map(String::as_str).collect();
-    if let Some(n) = out.node_names[conv.first_new..].iter().find(|n| old.contains(n.as_str())) {
-        let kw = if syntax_2020 { "PREF_NOEUD" } else { "TOUT" };
+    if let Some(n) = out.node_names[conv.first_new..].iter().find(|n| syntax_2020 && old.contains(n.as_str())) {
         return Err(occ.err(
-            kw,
+            "PREF_NOEUD",
             format!("new node {n}: a node of mesh {label} already has this name (its file named the nodes)"),
         ));
     }
@@ -150,7 +157,6 @@ fn hexa20_27(mesh: &Mesh, occ: &Args, label: &str, mess: &mut String) -> Result<
         );
     }
     let conv = convert::hexa20_to_27(mesh, &cells);
-    check_new_names(mesh, &conv.mesh, mesh.ncells(), mesh.nnodes(), occ, "TOUT")?;
     let created = conv.mesh.nnodes() - conv.first_new;
     let _ = writeln!(mess, "CREA_MAILLAGE/HEXA20_27 on {label}: {}; {created} nodes created", conversions(&conv));
     Ok(conv.mesh)
@@ -177,22 +183,13 @@ fn new_group(mesh: &Mesh, taken: &mut HashSet<String>, occ: &Args, kw: &str, nam
     Ok(())
 }
 
-/// New cells (from `first_cell`) and nodes (from `first_node`) are named `M` / `N` + number: no
-/// cell or node of a mesh that carried its own names may have one of these names.
-fn check_new_names(mesh: &Mesh, out: &Mesh, first_cell: usize, first_node: usize, occ: &Args, kw: &str) -> Result<()> {
-    let cells: HashSet<&str> = mesh.cell_names.iter().map(String::as_str).collect();
-    if let Some(n) = out.cell_names[first_cell..].iter().find(|n| cells.contains(n.as_str())) {
-        return Err(
-            occ.err(kw, format!("new cell {n}: a cell of the mesh already has this name (its file named the cells)"))
-        );
-    }
-    let nodes: HashSet<&str> = mesh.node_names.iter().map(String::as_str).collect();
-    if let Some(n) = out.node_names[first_node..].iter().find(|n| nodes.contains(n.as_str())) {
-        return Err(
-            occ.err(kw, format!("new node {n}: a node of the mesh already has this name (its file named the nodes)"))
-        );
-    }
-    Ok(())
+/// Code_Aster 2025's names of a mesh that carries none: node k is `N`k and cell k is `M`k, so that a
+/// file that read a mesh whose nodes had their own names designates the nodes of the new mesh by their
+/// numbers (a name given in the input file no longer designates its node there).
+fn number_names(out: &mut Mesh) {
+    out.node_names = (1..=out.nnodes()).map(|k| format!("N{k}")).collect();
+    out.cell_names = (1..=out.ncells()).map(|k| format!("M{k}")).collect();
+    out.named_nodes = false;
 }
 
 /// CREA_MAILLE: copies of cells, one group (NOM) per occurrence.
@@ -206,7 +203,6 @@ fn crea_maille(mesh: &Mesh, occs: &[Args], label: &str, mess: &mut String) -> Re
         copies.push((name, cells_or_all(mesh, occ, label)?));
     }
     let out = derive::copy_cells(mesh, &copies);
-    check_new_names(mesh, &out, mesh.ncells(), mesh.nnodes(), &occs[0], "NOM")?;
     let made: Vec<String> = copies.iter().map(|(g, c)| format!("{g} ({} cells)", c.len())).collect();
     let _ = writeln!(mess, "CREA_MAILLAGE/CREA_MAILLE on {label}: copies in {}", made.join(", "));
     Ok(out)
@@ -233,7 +229,6 @@ fn crea_poi1(mesh: &Mesh, occs: &[Args], label: &str, mess: &mut String) -> Resu
         lists.push((group, nodes));
     }
     let out = derive::point_cells(mesh, &lists);
-    check_new_names(mesh, &out, mesh.ncells(), mesh.nnodes(), &occs[0], "NOM_GROUP_MA")?;
     let _ = writeln!(mess, "CREA_MAILLAGE/CREA_POI1 on {label}: {} POI1 cells created", out.ncells() - mesh.ncells());
     Ok(out)
 }
@@ -268,7 +263,6 @@ fn modi_maille(mesh: &Mesh, occs: &[Args], label: &str, mess: &mut String) -> Re
         let _ = writeln!(mess, " <A> CREA_MAILLAGE: MODI_MAILLE: no cell modified");
     }
     let out = derive::centre_nodes(mesh, &quad8);
-    check_new_names(mesh, &out, mesh.ncells(), mesh.nnodes(), &occs[0], "OPTION")?;
     let _ = writeln!(mess, "CREA_MAILLAGE/MODI_MAILLE on {label}: {} QUAD8 -> QUAD9", quad8.len());
     Ok(out)
 }

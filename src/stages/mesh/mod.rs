@@ -268,7 +268,12 @@ fn crea_group_ma(w: &mut Work, occ: &Args) -> Result<()> {
         }
         acc
     } else if let Some(opt) = occ.text("OPTION") {
-        return Err(occ.err("OPTION", format!("OPTION='{opt}' is not supported yet")));
+        match opt {
+            "SPHERE" | "CYLINDRE" | "BANDE" => cells_in_shape(w, occ, opt)?,
+            "FACE_NORMALE" => cells_facing(w, occ)?,
+            "APPUI" => cells_on_nodes(w, occ)?,
+            _ => return Err(occ.err("OPTION", format!("OPTION='{opt}' is not supported yet"))),
+        }
     } else {
         return Err(occ.err("NOM", "nothing to build the group from"));
     };
@@ -364,6 +369,8 @@ fn crea_group_no(w: &mut Work, occ: &Args) -> Result<()> {
     } else if let Some(opt) = occ.text("OPTION") {
         match opt {
             "PLAN" => plane_nodes(w, occ)?,
+            "ENV_SPHERE" | "ENV_CYLINDRE" => nodes_on_surface(w, occ, opt)?,
+            "SEGM_DROI_ORDO" => ordered_segment_nodes(w, occ)?,
             "NOEUD_ORDO" => ordered_line_nodes(w, occ)?,
             _ => return Err(occ.err("OPTION", format!("OPTION='{opt}' is not supported yet"))),
         }
@@ -391,7 +398,23 @@ fn crea_group_no(w: &mut Work, occ: &Args) -> Result<()> {
     w.add_node_group(occ, "NOM", &name, nodes)
 }
 
-/// A point given by POINT, NOEUD_CENTRE or GROUP_NO_CENTRE (first node).
+/// The dimension DEFI_GROUP's geometric options work in (Code_Aster's `Z_CST`): 2 when every node has
+/// the same z, where z is then left out (taken as 0), else 3.
+fn z_cst_dim(mesh: &Mesh) -> usize {
+    let z0 = mesh.coords.first().map(|c| c[2]).unwrap_or(0.0);
+    if mesh.coords.iter().all(|c| c[2] == z0) {
+        2
+    } else {
+        3
+    }
+}
+
+/// A node's coordinates as the geometric options see them in dimension `ndim` (z is 0 in 2D).
+fn seen(c: &[f64; 3], ndim: usize) -> Vector3<f64> {
+    Vector3::new(c[0], c[1], if ndim == 2 { 0.0 } else { c[2] })
+}
+
+/// A point given by POINT, NOEUD_CENTRE or GROUP_NO_CENTRE (first node), in dimension `ndim`.
 fn centre(w: &mut Work, occ: &Args, ndim: usize) -> Result<[f64; 3]> {
     if occ.has("POINT") {
         let p = occ.reals("POINT");
@@ -409,51 +432,292 @@ fn centre(w: &mut Work, occ: &Args, ndim: usize) -> Result<[f64; 3]> {
     } else {
         return Err(occ.err("POINT", "POINT, NOEUD_CENTRE or GROUP_NO_CENTRE is required"));
     };
-    Ok(w.mesh.coords[n])
+    let x = seen(&w.mesh.coords[n], ndim);
+    Ok([x[0], x[1], x[2]])
+}
+
+/// The unit direction of VECT_NORMALE (`ndim` components) or ANGL_NAUT (`ndim − 1` angles in degrees:
+/// in 2D (cos α, sin α), in 3D (cos α cos β, sin α cos β, −sin β)). With `exact`, ANGL_NAUT must give
+/// exactly `ndim − 1` angles; without (OPTION='PLAN'), the first ones are used and a missing β is 0.
+fn unit_direction(occ: &Args, ndim: usize, exact: bool) -> Result<Vector3<f64>> {
+    let v = if occ.has("VECT_NORMALE") {
+        let v = occ.reals("VECT_NORMALE");
+        if v.len() != ndim {
+            return Err(occ.err("VECT_NORMALE", format!("{} components given, the mesh is {ndim}D here", v.len())));
+        }
+        Vector3::from_fn(|k, _| v.get(k).copied().unwrap_or(0.0))
+    } else if occ.has("ANGL_NAUT") {
+        let ang: Vec<f64> = occ.reals("ANGL_NAUT").iter().map(|d| d.to_radians()).collect();
+        if ang.is_empty() || (exact && ang.len() != ndim - 1) {
+            return Err(occ.err("ANGL_NAUT", format!("{} angle(s) given, {} needed in {ndim}D", ang.len(), ndim - 1)));
+        }
+        if ndim == 2 {
+            Vector3::new(ang[0].cos(), ang[0].sin(), 0.0)
+        } else {
+            let beta = ang.get(1).copied().unwrap_or(0.0);
+            Vector3::new(ang[0].cos() * beta.cos(), ang[0].sin() * beta.cos(), -beta.sin())
+        }
+    } else {
+        return Err(occ.err("VECT_NORMALE", "VECT_NORMALE or ANGL_NAUT is required"));
+    };
+    let norm = v.norm();
+    if norm == 0.0 {
+        return Err(occ.err(if occ.has("VECT_NORMALE") { "VECT_NORMALE" } else { "ANGL_NAUT" }, "the vector is zero"));
+    }
+    Ok(v / norm)
+}
+
+/// A strictly positive real keyword.
+fn positive(occ: &Args, kw: &str) -> Result<f64> {
+    let v = occ.req_real(kw)?;
+    if v <= 0.0 {
+        return Err(occ.err(kw, format!("{kw} must be positive")));
+    }
+    Ok(v)
+}
+
+/// The squared distance of `x` from the axis through `x0` along the unit vector `axe` (Code_Aster's
+/// `cgmacy` / `cgnoec`: |x − x0|² sin² of the angle with the axis).
+fn axis_distance2(x: Vector3<f64>, x0: Vector3<f64>, axe: &Vector3<f64>) -> f64 {
+    let d = x - x0;
+    let r2 = d.norm_squared();
+    if r2 == 0.0 {
+        return 0.0;
+    }
+    let cos = (d.dot(axe) / r2.sqrt()).abs().min(1.0);
+    r2 * cos.acos().sin().powi(2)
 }
 
 /// OPTION='PLAN' (`cgnopl`): nodes at distance <= PRECISION from the line
 /// (2D: all z equal) or plane (3D) through the point with the given normal.
 fn plane_nodes(w: &mut Work, occ: &Args) -> Result<Vec<usize>> {
-    let z0 = w.mesh.coords.first().map(|c| c[2]).unwrap_or(0.0);
-    let ndim = if w.mesh.coords.iter().all(|c| c[2] == z0) { 2 } else { 3 };
-    let x0 = centre(w, occ, ndim)?;
-    let mut nrm = [0.0f64; 3];
-    if occ.has("VECT_NORMALE") {
-        let v = occ.reals("VECT_NORMALE");
-        if v.len() != ndim {
-            return Err(occ.err("VECT_NORMALE", format!("{} components given, the mesh is {ndim}D here", v.len())));
-        }
-        nrm[..ndim].copy_from_slice(&v);
-    } else if occ.has("ANGL_NAUT") {
-        let ang: Vec<f64> = occ.reals("ANGL_NAUT").iter().map(|d| d.to_radians()).collect();
-        if ndim == 2 {
-            nrm = [ang[0].cos(), ang[0].sin(), 0.0];
-        } else {
-            let beta = ang.get(1).copied().unwrap_or(0.0);
-            nrm = [ang[0].cos() * beta.cos(), ang[0].sin() * beta.cos(), -beta.sin()];
-        }
-    } else {
-        return Err(occ.err("VECT_NORMALE", "VECT_NORMALE or ANGL_NAUT is required"));
+    let ndim = z_cst_dim(&w.mesh);
+    let x0 = Vector3::from(centre(w, occ, ndim)?);
+    let nrm = unit_direction(occ, ndim, false)?;
+    let prec = positive(occ, "PRECISION")?;
+    Ok((0..w.mesh.nnodes()).filter(|&n| (seen(&w.mesh.coords[n], ndim) - x0).dot(&nrm).abs() <= prec).collect())
+}
+
+/// CREA_GROUP_NO OPTION='ENV_SPHERE' (`cgnoes`) and 'ENV_CYLINDRE' (`cgnoec`, 3D only): the nodes within
+/// PRECISION of the sphere of RAYON about the centre, or of the cylinder of RAYON about the axis through
+/// it, in node order.
+fn nodes_on_surface(w: &mut Work, occ: &Args, opt: &str) -> Result<Vec<usize>> {
+    let ndim = z_cst_dim(&w.mesh);
+    let cylinder = opt == "ENV_CYLINDRE";
+    if cylinder && ndim != 3 {
+        return Err(occ.err("OPTION", "OPTION='ENV_CYLINDRE' needs a 3D mesh (its nodes all have the same z)"));
     }
-    let norm = Vector3::from(nrm).norm();
-    if norm == 0.0 {
-        return Err(occ.err("VECT_NORMALE", "the normal vector is zero"));
-    }
-    let prec = occ.req_real("PRECISION")?;
-    if prec <= 0.0 {
-        return Err(occ.err("PRECISION", "PRECISION must be positive"));
-    }
-    Ok(w.mesh
-        .coords
-        .iter()
-        .enumerate()
-        .filter(|(_, c)| {
-            let d: f64 = (0..3).map(|k| (c[k] - x0[k]) * nrm[k] / norm).sum();
-            d.abs() <= prec
+    let x0 = Vector3::from(centre(w, occ, ndim)?);
+    let axe = if cylinder { Some(unit_direction(occ, 3, true)?) } else { None };
+    let rayon = positive(occ, "RAYON")?;
+    let prec = positive(occ, "PRECISION")?;
+    Ok((0..w.mesh.nnodes())
+        .filter(|&n| {
+            let x = seen(&w.mesh.coords[n], ndim);
+            let dist = match &axe {
+                Some(axe) => axis_distance2(x, x0, axe).sqrt(),
+                None => (x - x0).norm(),
+            };
+            (dist - rayon).abs() <= prec
         })
-        .map(|(i, _)| i)
         .collect())
+}
+
+/// The cells whose nodes pass `inside` as CRIT_NOEUD asks: AU_MOINS_UN one of them, TOUS all, MAJORITE
+/// at least half (rounded up), in cell order.
+fn cells_by_nodes(mesh: &Mesh, crit: &str, inside: impl Fn(usize) -> bool) -> Vec<usize> {
+    (0..mesh.ncells())
+        .filter(|&c| {
+            let nodes = &mesh.cells[c];
+            match crit {
+                "AU_MOINS_UN" => nodes.iter().any(|&n| inside(n)),
+                "TOUS" => nodes.iter().all(|&n| inside(n)),
+                _ => nodes.iter().filter(|&&n| inside(n)).count() >= nodes.len().div_ceil(2),
+            }
+        })
+        .collect()
+}
+
+/// CREA_GROUP_MA OPTION='SPHERE' (`cgmasp`: nodes within RAYON of the centre), 'CYLINDRE' (`cgmacy`,
+/// 3D: within RAYON of the axis) and 'BANDE' (`cgmaba`: within DIST of the plane (3D) or line (2D)
+/// through the centre normal to the direction), cells chosen by CRIT_NOEUD.
+fn cells_in_shape(w: &mut Work, occ: &Args, opt: &str) -> Result<Vec<usize>> {
+    let ndim = z_cst_dim(&w.mesh);
+    if opt == "CYLINDRE" && ndim != 3 {
+        return Err(occ.err("OPTION", "OPTION='CYLINDRE' needs a 3D mesh (its nodes all have the same z)"));
+    }
+    let x0 = Vector3::from(centre(w, occ, ndim)?);
+    let crit = occ.text("CRIT_NOEUD").unwrap_or("AU_MOINS_UN").to_string();
+    let mesh = &w.mesh;
+    let cells = match opt {
+        "SPHERE" => {
+            let r = positive(occ, "RAYON")?;
+            cells_by_nodes(mesh, &crit, |n| (seen(&mesh.coords[n], ndim) - x0).norm_squared() <= r * r)
+        }
+        "CYLINDRE" => {
+            let r = positive(occ, "RAYON")?;
+            let axe = unit_direction(occ, 3, true)?;
+            // A node on the centre itself takes its cell whatever CRIT_NOEUD says (as `cgmacy` does).
+            let on_centre: HashSet<usize> =
+                (0..mesh.nnodes()).filter(|&n| Vector3::from(mesh.coords[n]) == x0).collect();
+            let mut cells =
+                cells_by_nodes(mesh, &crit, |n| axis_distance2(Vector3::from(mesh.coords[n]), x0, &axe) <= r * r);
+            if !on_centre.is_empty() {
+                let chosen: HashSet<usize> = cells.iter().copied().collect();
+                cells.extend(
+                    (0..mesh.ncells())
+                        .filter(|c| !chosen.contains(c) && mesh.cells[*c].iter().any(|n| on_centre.contains(n))),
+                );
+                cells.sort_unstable();
+            }
+            cells
+        }
+        _ => {
+            let dist = positive(occ, "DIST")?;
+            let nrm = unit_direction(occ, ndim, true)?;
+            cells_by_nodes(mesh, &crit, |n| (Vector3::from(mesh.coords[n]) - x0).dot(&nrm).abs() <= dist)
+        }
+    };
+    Ok(cells)
+}
+
+/// CREA_GROUP_MA OPTION='FACE_NORMALE' (`cgmafn`): the SEG cells of a 2D mesh, or the TRIA and QUAD
+/// cells of a 3D one, whose normal (of the first two nodes, or of the plane of the first three) is
+/// within ANGL_PREC degrees of the direction; with VERI_SIGNE='OUI' (the default) it must also point
+/// the same way.
+fn cells_facing(w: &mut Work, occ: &Args) -> Result<Vec<usize>> {
+    let dir = unit_direction(occ, z_cst_dim(&w.mesh), true)?;
+    let prec = occ.real("ANGL_PREC").unwrap_or(0.5).to_radians();
+    let signed = occ.text("VERI_SIGNE").unwrap_or("OUI") == "OUI";
+    let mesh = &w.mesh;
+    let mut out = Vec::new();
+    for c in 0..mesh.ncells() {
+        let name = mesh.cell_types[c].name();
+        let p = |k: usize| Vector3::from(mesh.coords[mesh.cells[c][k]]);
+        let normal = if mesh.dim == 2 && name.starts_with("SEG") {
+            let d = p(1) - p(0);
+            Vector3::new(d[1], -d[0], 0.0)
+        } else if mesh.dim == 3 && (name.starts_with("TRIA") || name.starts_with("QUAD")) {
+            (p(1) - p(0)).cross(&(p(2) - p(0)))
+        } else {
+            continue;
+        };
+        let norm = normal.norm();
+        if norm == 0.0 {
+            return Err(occ.err("OPTION", format!("cell {} is degenerate: it has no normal", mesh.cell_names[c])));
+        }
+        let normal = normal / norm;
+        let dot = normal.dot(&dir);
+        if signed && dot <= 0.0 {
+            continue;
+        }
+        if dot.abs().min(1.0).acos() < prec.abs() {
+            out.push(c);
+        }
+    }
+    Ok(out)
+}
+
+/// CREA_GROUP_MA OPTION='APPUI' (`cgmaap`): the cells that touch the nodes of NOEUD / GROUP_NO as
+/// TYPE_APPUI asks: AU_MOINS_UN one node, TOUT all their nodes, SOMMET all their vertices, MAJORITE at
+/// least half their nodes (rounded up); in cell order.
+fn cells_on_nodes(w: &mut Work, occ: &Args) -> Result<Vec<usize>> {
+    let mut given = vec![false; w.mesh.nnodes()];
+    for name in occ.texts("NOEUD") {
+        given[w.node(occ, "NOEUD", &name)?] = true;
+    }
+    for g in occ.texts("GROUP_NO") {
+        for &n in w.node_group(occ, "GROUP_NO", &g)? {
+            given[n] = true;
+        }
+    }
+    let kind = occ.req_text("TYPE_APPUI")?;
+    let mesh = &w.mesh;
+    Ok((0..mesh.ncells())
+        .filter(|&c| {
+            let nodes = &mesh.cells[c];
+            if !nodes.iter().any(|&n| given[n]) {
+                return false;
+            }
+            let count = |k: usize| nodes[..k].iter().filter(|&&n| given[n]).count();
+            match kind {
+                "AU_MOINS_UN" => true,
+                "TOUT" => count(nodes.len()) == nodes.len(),
+                "SOMMET" => {
+                    let nv = mesh.cell_types[c].nvertices();
+                    count(nv) == nv
+                }
+                _ => count(nodes.len()) >= nodes.len().div_ceil(2),
+            }
+        })
+        .collect())
+}
+
+/// CREA_GROUP_NO OPTION='SEGM_DROI_ORDO' (`cgnoso` + `oreino`): the nodes of NOEUD / GROUP_NO ordered
+/// along the segment from GROUP_NO_ORIG to GROUP_NO_EXTR. Each must lie within PRECISION of the line
+/// (CRITERE='ABSOLU' a distance, 'RELATIF' relative to the segment's length) and between the ends, and
+/// no two may project on the same point: Code_Aster stops otherwise.
+fn ordered_segment_nodes(w: &mut Work, occ: &Args) -> Result<Vec<usize>> {
+    let mut nodes = Vec::new();
+    let mut seen_nodes = HashSet::new();
+    for g in occ.texts("GROUP_NO") {
+        for &n in w.node_group(occ, "GROUP_NO", &g)? {
+            if seen_nodes.insert(n) {
+                nodes.push(n);
+            }
+        }
+    }
+    for name in occ.texts("NOEUD") {
+        let n = w.node(occ, "NOEUD", &name)?;
+        if seen_nodes.insert(n) {
+            nodes.push(n);
+        }
+    }
+    if nodes.is_empty() {
+        return Err(occ.err("GROUP_NO", "no nodes given"));
+    }
+    let a = group_first_node(w, occ, "GROUP_NO_ORIG")?.ok_or_else(|| occ.err("GROUP_NO_ORIG", "required"))?;
+    let b = group_first_node(w, occ, "GROUP_NO_EXTR")?.ok_or_else(|| occ.err("GROUP_NO_EXTR", "required"))?;
+    let prec = occ.req_real("PRECISION")?;
+    let relative = occ.req_text("CRITERE")? == "RELATIF";
+    let mesh = &w.mesh;
+    let (xa, xb) = (Vector3::from(mesh.coords[a]), Vector3::from(mesh.coords[b]));
+    let ab = xb - xa;
+    let ab2 = ab.norm_squared();
+    if ab2 == 0.0 {
+        return Err(occ.err("GROUP_NO_EXTR", "the origin and the end are the same point"));
+    }
+    let mut keyed = Vec::with_capacity(nodes.len());
+    for &n in &nodes {
+        let am = Vector3::from(mesh.coords[n]) - xa;
+        let c = am.dot(&ab) / ab2;
+        let off2 = (am - c * ab).norm_squared();
+        let off = if relative { (off2 / ab2).sqrt() } else { off2.sqrt() };
+        if off > prec {
+            return Err(occ.err(
+                "PRECISION",
+                format!("node {} is {:e} from the segment, beyond PRECISION", mesh.node_names[n], off2.sqrt()),
+            ));
+        }
+        if (c < 0.0 || am.norm_squared() > ab2) && (am.norm_squared() - ab2) / ab2 > f64::EPSILON {
+            return Err(occ.err(
+                "GROUP_NO",
+                format!("node {} is outside the segment (abscissa {c:e} of its length)", mesh.node_names[n]),
+            ));
+        }
+        keyed.push((c, n));
+    }
+    keyed.sort_by(|p, q| p.0.total_cmp(&q.0));
+    if let Some(pair) = keyed.windows(2).find(|p| p[0].0 == p[1].0) {
+        return Err(occ.err(
+            "GROUP_NO",
+            format!(
+                "nodes {} and {} are at the same place on the segment",
+                mesh.node_names[pair[0].1], mesh.node_names[pair[1].1]
+            ),
+        ));
+    }
+    Ok(keyed.into_iter().map(|(_, n)| n).collect())
 }
 
 /// The first node of a group named by keyword `kw` (Code_Aster's `utnono`).

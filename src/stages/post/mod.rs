@@ -1,4 +1,4 @@
-//! POST_RELEVE_T (EXTRACTION): values of results and fields as a table; POST_ERREUR (`erreur`): error
+//! POST_RELEVE_T (EXTRACTION): values of results (RESULTAT) and of nodal fields (CHAM_GD) as a table; POST_ERREUR (`erreur`): error
 //! norms of a field against reference formulas.
 
 mod erreur;
@@ -13,6 +13,57 @@ use crate::stages::Ctx;
 use crate::concepts::table::{Cell, ColType, Table};
 // ------------------------------------------------------------------ POST_RELEVE_T
 
+/// The node label and coordinates columns of a row (Code_Aster shows node numbers for meshes whose
+/// file gave no node names).
+fn node_columns(mesh: &crate::mesh::Mesh, node: usize) -> Vec<(String, Cell)> {
+    let label = if mesh.named_nodes { mesh.node_names[node].clone() } else { (node + 1).to_string() };
+    let mut row = vec![("NOEUD".to_string(), Cell::Text(label))];
+    for (d, name) in ["COOR_X", "COOR_Y", "COOR_Z"].iter().enumerate().take(mesh.dim.max(2)) {
+        row.push((name.to_string(), Cell::Real(mesh.coords[node][d])));
+    }
+    row
+}
+
+/// EXTRACTION from a nodal field given by CHAM_GD (CREA_CHAMP's fields): one row per selected node,
+/// with the columns INTITULE, CHAM_GD, NOEUD, its coordinates and the components asked for.
+fn field_rows(occ: &Args, intitule: &str, fc: &crate::concepts::ConceptRef) -> Result<Vec<Vec<(String, Cell)>>> {
+    let data = fc.field()?;
+    let Field::Node { values, components } = &data.field else {
+        return Err(occ.err("CHAM_GD", format!("{} is not a field at nodes: not supported yet", fc.label())));
+    };
+    if data.functions.is_some() {
+        return Err(occ.err("CHAM_GD", format!("{} is a field of functions: not supported yet", fc.label())));
+    }
+    let mesh = data.mesh_concept.mesh()?;
+    let nodes = crate::stages::select::select_nodes(&mesh, occ, &data.mesh_concept.label())?;
+    let comps: Vec<String> =
+        if occ.text("TOUT_CMP") == Some("OUI") { components.clone() } else { occ.texts("NOM_CMP") };
+    let ks: Vec<usize> = comps
+        .iter()
+        .map(|c| {
+            components
+                .iter()
+                .position(|x| x == c)
+                .ok_or_else(|| occ.err("NOM_CMP", format!("field {} has no component {c}", fc.label())))
+        })
+        .collect::<Result<_>>()?;
+    let n = components.len();
+    let mut rows = Vec::new();
+    for node in nodes {
+        let mut row = vec![
+            ("INTITULE".to_string(), Cell::Text(intitule.to_string())),
+            ("CHAM_GD".to_string(), Cell::Text(fc.label())),
+        ];
+        row.extend(node_columns(&mesh, node));
+        for (c, &k) in comps.iter().zip(&ks) {
+            let v = values[node * n + k];
+            row.push((c.clone(), if v.is_nan() { Cell::Empty } else { Cell::Real(v) }));
+        }
+        rows.push(row);
+    }
+    Ok(rows)
+}
+
 pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let mut t = Table::default();
     let mut rows: Vec<Vec<(String, Cell)>> = Vec::new();
@@ -22,7 +73,6 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             return Err(occ.err("OPERATION", format!("OPERATION='{}' is not supported yet", ops.join("', '"))));
         }
         occ.refuse(&[
-            "CHAM_GD",
             "INVARIANT",
             "ELEM_PRINCIPAUX",
             "RESULTANTE",
@@ -41,10 +91,14 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             "TRAC_DIR",
             "DIRECTION",
         ])?;
+        let intitule = occ.req_text("INTITULE")?.to_string();
+        if let Some(fc) = occ.concept("CHAM_GD") {
+            rows.extend(field_rows(occ, &intitule, &fc)?);
+            continue;
+        }
         if occ.text("CRITERE") == Some("ABSOLU") {
             return Err(occ.err("CRITERE", "CRITERE='ABSOLU' for the time search is not supported yet"));
         }
-        let intitule = occ.req_text("INTITULE")?.to_string();
         let rc = occ.req_concept("RESULTAT")?;
         let name = rc.label();
         let r = rc.result()?;
@@ -100,13 +154,7 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 if let Some(c) = cell {
                     row.push(("MAILLE".to_string(), Cell::Text(mesh.cell_names[c].clone())));
                 }
-                // Code_Aster shows node numbers for meshes whose file gave no node names.
-                let label = if mesh.named_nodes { mesh.node_names[node].clone() } else { (node + 1).to_string() };
-                row.push(("NOEUD".to_string(), Cell::Text(label)));
-                let xyz = ["COOR_X", "COOR_Y", "COOR_Z"];
-                for (d, name) in xyz.iter().enumerate().take(mesh.dim.max(2)) {
-                    row.push((name.to_string(), Cell::Real(mesh.coords[node][d])));
-                }
+                row.extend(node_columns(&mesh, node));
                 row
             };
             match field {

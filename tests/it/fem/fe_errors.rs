@@ -148,3 +148,22 @@ fn reuse_under_another_name_is_the_same_concept() {
     );
     assert_eq!(code, 0, "{err}");
 }
+
+/// VERI_NORM='NON' turns off a check of the skins' normals we do not make: the load is built; an
+/// explicit VERI_NORM='OUI' asks for that check and stops by name.
+#[test]
+fn veri_norm_non_is_taken_and_oui_is_refused_by_name() {
+    let body = |v: &str| {
+        format!(
+            "CH = AFFE_CHAR_MECA(MODELE=MO, VERI_NORM='{v}', DDL_IMPO=_F(GROUP_NO='GAUCHE', DX=0., DY=0.),\n\
+             PRES_REP=_F(GROUP_MA='DROITE', PRES=1.))\n\
+             CHMAT = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=ACIER))\n\
+             R = MECA_STATIQUE(MODELE=MO, CHAM_MATER=CHMAT, EXCIT=_F(CHARGE=CH))\nFIN()\n"
+        )
+    };
+    let (code, err) = run("verinon", &body("NON"));
+    assert_eq!(code, 0, "{err}");
+    let (code, err) = run("verioui", &body("OUI"));
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("case.comm:5:") && err.contains("VERI_NORM") && err.contains("not supported yet"), "{err}");
+}

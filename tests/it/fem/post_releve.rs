@@ -4,6 +4,7 @@
 //! The scene: a 2 × 2 QUAD4 square in plane stress, every node displaced by u = (ε x, 0), each cell of
 //! its own Young's modulus E_c. The stress is uniform in each cell, σxx = E_c ε / (1 − ν²), so at the
 //! centre node the four cells give four different values, whose mean and sum are known in closed form.
+//! And a nodal field of CREA_CHAMP (the mesh's GEOMETRIE) read through CHAM_GD.
 
 use aster::med;
 use aster::mesh::generate::box_mesh;
@@ -75,4 +76,38 @@ fn moye_noeud_non_gives_one_row_per_cell() {
     // Four rows: their sum is four times the mean, their largest the stiffest cell's.
     run("NON", "SOMM", YOUNG.iter().map(|&e| sxx(e)).sum::<f64>());
     run("NON", "MAX", sxx(6.0e5));
+}
+
+/// CREA_CHAMP EXTR of a mesh's GEOMETRIE and POST_RELEVE_T on it (CHAM_GD): the components X, Y, Z of
+/// a 3D box's nodes, summed over a face and tested at a corner, against the coordinates.
+#[test]
+fn geometry_of_a_mesh_extracted_and_read_from_cham_gd() {
+    let dir = scratch!("geometry");
+    let mesh = box_mesh(CellType::Hexa8, &[2, 3, 1], &[2.0, 3.0, 0.5]).unwrap();
+    let mesh_path = dir.join("box.med");
+    med::write_mesh(&mesh_path, &mesh, "MA").unwrap();
+    let xmax = &mesh.node_groups["XMAX"];
+    let sum_y: f64 = xmax.iter().map(|&n| mesh.coords[n][1]).sum();
+    let sum_z: f64 = xmax.iter().map(|&n| mesh.coords[n][2]).sum();
+    assert_eq!(xmax.len(), 4 * 2);
+    let comm = format!(
+        "DEBUT()\n\
+         MA = LIRE_MAILLAGE(UNITE=20, FORMAT='MED')\n\
+         CHXN = CREA_CHAMP(OPERATION='EXTR', TYPE_CHAM='NOEU_GEOM_R', NOM_CHAM='GEOMETRIE', MAILLAGE=MA)\n\
+         T = POST_RELEVE_T(ACTION=_F(INTITULE='POS', CHAM_GD=CHXN, GROUP_NO='XMAX', TOUT_CMP='OUI',\n\
+                                     OPERATION='EXTRACTION'))\n\
+         TEST_TABLE(TABLE=T, NOM_PARA='X', TYPE_TEST='MIN', VALE_CALC=2.0, VALE_REFE=2.0, REFERENCE='ANALYTIQUE')\n\
+         TEST_TABLE(TABLE=T, NOM_PARA='Y', TYPE_TEST='SOMM', VALE_CALC={sum_y:e}, VALE_REFE={sum_y:e},\n\
+                    REFERENCE='ANALYTIQUE')\n\
+         TEST_TABLE(TABLE=T, NOM_PARA='COOR_Z', TYPE_TEST='SOMM', VALE_CALC={sum_z:e}, VALE_REFE={sum_z:e},\n\
+                    REFERENCE='ANALYTIQUE')\n\
+         FIN()\n"
+    );
+    let comm_path = dir.join("geometry.comm");
+    std::fs::write(&comm_path, comm).unwrap();
+    let opts = RunOptions { out_dir: Some(dir.join("out")), units: vec![(20, mesh_path, Dir::In)], echo: false };
+    let o = runner::run_comm(&comm_path, &opts);
+    let mess = o.mess.as_ref().and_then(|p| std::fs::read_to_string(p).ok()).unwrap_or_default();
+    assert_eq!(o.diagnostic, "OK", "{:?}\n{mess}", o.error);
+    assert_eq!(o.ok_count(), 6, "{mess}");
 }

@@ -2,7 +2,7 @@
 //! CHAM_NO, plane stress of an incompressible material, the alarms Code_Aster gives (MODELE1_3,
 //! MODELE1_4, ALGORITH3_41) with their count at the end of the run, IMPR_RESU naming the step a field
 //! lacks, and catalogue facts (CALC_TABLE UNIQUE's FORMAT_R, LIRE_FONCTION TYPE='NAPPE' with
-//! INTERPOL_FONC, an integral float for an integer).
+//! INTERPOL_FONC, an integral float for an integer), MECA_STATIQUE over LIST_INST.
 
 use crate::common::*;
 
@@ -181,4 +181,29 @@ fn catalogue_facts_of_code_aster() {
     assert!(o.status.success(), "{}\n{mess}", text(&o).1);
     assert!(mess.contains("checks: 5 OK, 0 NOOK"), "{mess}");
     // L holds 0, 0.25, 0.5, 0.75, 1: G is linear between the squares of 0.5 and 0.75 (0.375 at 0.6).
+}
+
+/// MECA_STATIQUE over LIST_INST: one linear solve per instant, numbered from 1, the loads multiplied by
+/// their FONC_MULT at each instant: with a ramp F(t) = t the displacement at t = 3 is three times the
+/// one at t = 1 (DX at the loaded edge 9.1e-5 for the unit load, as above), and a constant load is
+/// the same at every instant.
+#[test]
+fn meca_statique_over_a_list_of_instants() {
+    let dir = scratch!("list_inst");
+    let comm = plate(
+        "D_PLAN",
+        0.3,
+        "L = DEFI_LIST_REEL(VALE=(1.0, 3.0))\n\
+         RAMP = DEFI_FONCTION(NOM_PARA='INST', VALE=(0.0, 0.0, 10.0, 10.0))\n\
+         R = MECA_STATIQUE(MODELE=MO, CHAM_MATER=CHMAT, LIST_INST=L,\n\
+                           EXCIT=(_F(CHARGE=BLOC), _F(CHARGE=TRAC, FONC_MULT=RAMP)))\n\
+         C = MECA_STATIQUE(MODELE=MO, CHAM_MATER=CHMAT, LIST_INST=L, EXCIT=(_F(CHARGE=BLOC), _F(CHARGE=TRAC)))\n\
+         TEST_RESU(RESU=(_F(RESULTAT=R, NUME_ORDRE=1, NOM_CHAM='DEPL', NOM_CMP='DX', TYPE_TEST='MAX', VALE_CALC=9.1e-5),\n\
+                         _F(RESULTAT=R, NUME_ORDRE=2, NOM_CHAM='DEPL', NOM_CMP='DX', TYPE_TEST='MAX', VALE_CALC=2.73e-4),\n\
+                         _F(RESULTAT=R, INST=3.0, NOM_CHAM='DEPL', NOM_CMP='DX', TYPE_TEST='MAX', VALE_CALC=2.73e-4),\n\
+                         _F(RESULTAT=C, NUME_ORDRE=2, NOM_CHAM='DEPL', NOM_CMP='DX', TYPE_TEST='MAX', VALE_CALC=9.1e-5)))",
+    );
+    let (status, mess, _) = run_on_box(&dir, ("QUAD4", "2,1", "2,1"), &comm);
+    assert!(status.success(), "{mess}");
+    assert!(mess.contains("checks: 4 OK, 0 NOOK"), "{mess}");
 }

@@ -466,3 +466,53 @@ FIN()
     assert_eq!(got.cell_types, want.cell_types);
     assert_eq!(got.node_names, want.node_names);
 }
+
+/// Code_Aster 2025 builds CREA_MAILLAGE's mesh without names: on a `.mail` mesh whose nodes are named
+/// N8, N7, N6, N5 (the new nodes' numbers), LINE_QUAD's mesh numbers every node, and NOEUD='N1' then
+/// designates its first node, the file's N8. In the 2020 syntax the names stay and a clash stops.
+#[test]
+fn crea_maillage_of_a_named_mesh_numbers_its_nodes_as_code_aster_2025() {
+    let dir = scratch!("named");
+    let mail = dir.join("named.mail");
+    std::fs::write(
+        &mail,
+        "TITRE\nNAMED\nFINSF\nCOOR_2D\n  N8 0.0 0.0\n  N7 2.0 0.0\n  N6 2.0 1.0\n  N5 0.0 1.0\nFINSF\n\
+         QUAD4\n  Q1 N8 N7 N6 N5\nFINSF\nSEG2\n  S1 N8 N7\nFINSF\nFIN\n",
+    )
+    .unwrap();
+    let out = dir.join("mq.med");
+    let mess = run_ok(
+        &dir,
+        "named",
+        r#"DEBUT()
+MA = LIRE_MAILLAGE(FORMAT="ASTER", UNITE=20)
+MQ = CREA_MAILLAGE(MAILLAGE=MA, LINE_QUAD=_F(TOUT="OUI"))
+MQ = DEFI_GROUP(reuse=MQ, MAILLAGE=MQ, INFO=2, CREA_GROUP_NO=(_F(NOM="FIRST", NOEUD="N1"), _F(NOM="MID", NOEUD="N5")),
+                CREA_GROUP_MA=_F(NOM="SEG", MAILLE="M2"))
+IMPR_RESU(FORMAT="MED", UNITE=81, RESU=_F(MAILLAGE=MQ))
+FIN()
+"#,
+        &[(20, &mail), (81, &out)],
+    );
+    assert!(mess.contains("5 to N8") || mess.contains("N5 to N8"), "{mess}");
+    let m = med::read_mesh(&out, None).unwrap();
+    assert_eq!(m.nnodes(), 8);
+    let at = |g: &str| m.coords[m.node_groups[g][0]];
+    assert_eq!(at("FIRST"), [0.0, 0.0, 0.0], "N1 is the first node, the file's N8");
+    // The first new node is the middle of the first edge of Q1 (N8-N7 in the file).
+    assert_eq!(at("MID"), [1.0, 0.0, 0.0]);
+    assert_eq!(m.cell_types[m.cell_groups["SEG"][0]], CellType::Seg3, "M2 is the second cell, S1");
+    // The 2020 syntax keeps the names: PREF_NOEUD='N' from 5 clashes with the file's N5.
+    let o = run_comm(
+        &dir,
+        "clash",
+        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='ASTER', UNITE=20)\n\
+         MQ = CREA_MAILLAGE(MAILLAGE=MA, LINE_QUAD=_F(TOUT='OUI', PREF_NOEUD='N', PREF_NUME=5))\nFIN()\n",
+        &[(20, &mail)],
+    );
+    let (o_out, o_err) = text(&o);
+    assert!(
+        !o.status.success() && o_err.contains("new node N5: a node of mesh MA already has this name"),
+        "{o_out}{o_err}"
+    );
+}

@@ -190,6 +190,150 @@ FIN()
     assert!(mess.contains(&format!("nodes: {}", m.nnodes())), "message file lacks the INFO=2 summary");
 }
 
+/// DEFI_GROUP's geometric options on generated boxes, each group computed here from the coordinates:
+/// ENV_SPHERE, ENV_CYLINDRE and SEGM_DROI_ORDO (nodes), SPHERE with each CRIT_NOEUD, CYLINDRE, BANDE,
+/// FACE_NORMALE and APPUI (cells), in 3D, and SPHERE, BANDE and FACE_NORMALE in 2D.
+#[test]
+fn defi_group_geometric_options() {
+    let dir = scratch!("geom");
+    let src_mesh = dir.join("h8.med");
+    let m = box_mesh(CellType::Hexa8, &[4, 4, 2], &[2.0, 2.0, 1.0]).unwrap();
+    med::write_mesh(&src_mesh, &m, "BOX").unwrap();
+    let corner = (0..m.nnodes()).find(|&n| m.coords[n] == [0.0, 0.0, 0.0]).unwrap();
+    let far = (0..m.nnodes()).find(|&n| m.coords[n] == [2.0, 2.0, 0.0]).unwrap();
+    let result = dir.join("out.rmed");
+    let comm = format!(
+        r#"
+DEBUT()
+MA = LIRE_MAILLAGE(FORMAT='MED', NOM_MED='BOX')
+MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, INFO=2,
+    CREA_GROUP_MA=(
+        _F(NOM='SPH_UN', OPTION='SPHERE', POINT=(0., 0., 0.), RAYON=0.8),
+        _F(NOM='SPH_TOUS', OPTION='SPHERE', POINT=(0., 0., 0.), RAYON=0.8, CRIT_NOEUD='TOUS'),
+        _F(NOM='SPH_MAJ', OPTION='SPHERE', POINT=(0., 0., 0.), RAYON=0.8, CRIT_NOEUD='MAJORITE'),
+        _F(NOM='CYL', OPTION='CYLINDRE', POINT=(1., 1., 0.), VECT_NORMALE=(0., 0., 2.), RAYON=0.75,
+           CRIT_NOEUD='TOUS'),
+        _F(NOM='BAND', OPTION='BANDE', POINT=(1., 0., 0.), ANGL_NAUT=(0., 0.), DIST=0.3, CRIT_NOEUD='TOUS'),
+        _F(NOM='TOP', OPTION='FACE_NORMALE', VECT_NORMALE=(0., 0., 1.)),
+        _F(NOM='TOPBOT', OPTION='FACE_NORMALE', VECT_NORMALE=(0., 0., 1.), VERI_SIGNE='NON'),
+        _F(NOM='TOUCH', OPTION='APPUI', NOEUD='{c}', TYPE_APPUI='AU_MOINS_UN'),
+        _F(NOM='ONZMIN', OPTION='APPUI', GROUP_NO='ZMIN', TYPE_APPUI='TOUT'),
+    ),
+    CREA_GROUP_NO=(
+        _F(NOM='SHELL', OPTION='ENV_SPHERE', POINT=(0., 0., 0.), RAYON=1.0, PRECISION=1.e-6),
+        _F(NOM='TUBE', OPTION='ENV_CYLINDRE', POINT=(0., 0., 0.), ANGL_NAUT=(0., -90.), RAYON=1.0,
+           PRECISION=1.e-6),
+        _F(NOM='A', NOEUD='{c}'),
+        _F(NOM='B', NOEUD='{f}'),
+        _F(NOM='DIAG', OPTION='SEGM_DROI_ORDO', GROUP_NO='ZMIN', GROUP_NO_ORIG='B', GROUP_NO_EXTR='A',
+           PRECISION=1.e-6, CRITERE='ABSOLU'),
+    ),
+)
+IMPR_RESU(FORMAT='MED', UNITE=80, RESU=_F(MAILLAGE=MA))
+FIN()
+"#,
+        c = m.node_names[corner],
+        f = m.node_names[far],
+    );
+    // SEGM_DROI_ORDO stops on nodes off the segment: ZMIN holds the whole bottom face.
+    let o = run_comm(&dir, "geom_bad", &comm, &[(20, &src_mesh), (80, &result)]);
+    let (out, err) = text(&o);
+    assert!(!o.status.success() && err.contains("from the segment, beyond PRECISION"), "{out}\n{err}");
+    // The diagonal of the bottom face for the ordered segment.
+    let diag: Vec<usize> =
+        (0..m.nnodes()).filter(|&n| m.coords[n][2] == 0.0 && m.coords[n][0] == m.coords[n][1]).collect();
+    assert_eq!(diag.len(), 5);
+    let names_diag: Vec<String> = names(&m, &diag);
+    let comm = comm.replace(
+        "_F(NOM='DIAG', OPTION='SEGM_DROI_ORDO', GROUP_NO='ZMIN',",
+        &format!(
+            "_F(NOM='DG', NOEUD=({})),\n        _F(NOM='DIAG', OPTION='SEGM_DROI_ORDO', GROUP_NO='DG',",
+            names_diag.iter().map(|n| format!("'{n}'")).collect::<Vec<_>>().join(", ")
+        ),
+    );
+    run_ok(&dir, "geom", &comm, &[(20, &src_mesh), (80, &result)]);
+    let got = med::read_mesh(&result, None).unwrap();
+    let x = |n: usize| m.coords[n];
+    let d2 = |n: usize, c: [f64; 3]| (0..3).map(|k| (x(n)[k] - c[k]).powi(2)).sum::<f64>();
+    let cells_where =
+        |pred: &dyn Fn(&[usize]) -> bool| -> Vec<usize> { (0..m.ncells()).filter(|&c| pred(&m.cells[c])).collect() };
+    let inside = |n: usize| d2(n, [0.0; 3]) <= 0.64;
+    let un = cells_where(&|ns| ns.iter().any(|&n| inside(n)));
+    let tous = cells_where(&|ns| ns.iter().all(|&n| inside(n)));
+    let maj = cells_where(&|ns| 2 * ns.iter().filter(|&&n| inside(n)).count() >= ns.len());
+    // The corner hexahedron has 7 of its 8 nodes within 0.8 (h = 0.5): a majority, not all.
+    assert!(tous.len() < maj.len() && maj.len() < un.len(), "{} {} {}", tous.len(), maj.len(), un.len());
+    assert_eq!(got.cell_groups["SPH_UN"], un);
+    assert_eq!(got.cell_groups["SPH_TOUS"], tous);
+    assert_eq!(got.cell_groups["SPH_MAJ"], maj);
+    let cyl = cells_where(&|ns| ns.iter().all(|&n| (x(n)[0] - 1.0).powi(2) + (x(n)[1] - 1.0).powi(2) <= 0.5625));
+    assert_eq!(cyl.len(), 4 * 2 + 4 * 2, "8 hexahedra and the 4 quadrangles below and above them");
+    assert_eq!(got.cell_groups["CYL"], cyl);
+    let band = cells_where(&|ns| ns.iter().all(|&n| (x(n)[0] - 1.0).abs() <= 0.3));
+    assert!(band.is_empty(), "no cell lies within 0.3 of x = 1 with h = 0.5");
+    assert!(!got.cell_groups.contains_key("BAND"), "an empty group is not created");
+    let quads = |z: f64| cells_where(&|ns| ns.len() == 4 && ns.iter().all(|&n| x(n)[2] == z));
+    let top = quads(1.0);
+    assert_eq!(top.len(), 16);
+    assert_eq!(got.cell_groups["TOP"], top);
+    let topbot: Vec<usize> = (0..m.ncells()).filter(|c| top.contains(c) || quads(0.0).contains(c)).collect();
+    assert_eq!(got.cell_groups["TOPBOT"], topbot);
+    assert_eq!(got.cell_groups["TOUCH"], cells_where(&|ns| ns.contains(&corner)));
+    let zmin = &m.node_groups["ZMIN"];
+    assert_eq!(got.cell_groups["ONZMIN"], cells_where(&|ns| ns.iter().all(|n| zmin.contains(n))));
+    let shell: Vec<usize> = (0..m.nnodes()).filter(|&n| (d2(n, [0.0; 3]).sqrt() - 1.0).abs() <= 1e-6).collect();
+    assert_eq!(shell.len(), 3, "(1,0,0), (0,1,0) and (0,0,1)");
+    assert_eq!(got.node_groups["SHELL"], shell);
+    // ANGL_NAUT=(0, -90) is the z axis.
+    let tube: Vec<usize> =
+        (0..m.nnodes()).filter(|&n| ((x(n)[0].powi(2) + x(n)[1].powi(2)).sqrt() - 1.0).abs() <= 1e-6).collect();
+    assert_eq!(tube.len(), 2 * 3);
+    assert_eq!(got.node_groups["TUBE"], tube);
+    let mut from_far = diag.clone();
+    from_far.sort_by(|&a, &b| x(b)[0].total_cmp(&x(a)[0]));
+    assert_eq!(listed(&dir, "geom", "nodes of group DIAG:"), names(&m, &from_far));
+
+    // 2D: z is left out; the normal of a segment is (dy, −dx).
+    let src2 = dir.join("q4.med");
+    let m2 = box_mesh(CellType::Quad4, &[4, 2], &[2.0, 1.0]).unwrap();
+    med::write_mesh(&src2, &m2, "PLAQ").unwrap();
+    let comm2 = r#"
+DEBUT()
+MA = LIRE_MAILLAGE(FORMAT='MED')
+MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA,
+    CREA_GROUP_MA=(
+        _F(NOM='DISC', OPTION='SPHERE', POINT=(2., 1.), RAYON=0.6, CRIT_NOEUD='TOUS'),
+        _F(NOM='STRIP', OPTION='BANDE', POINT=(0., 0.5), VECT_NORMALE=(0., 1.), DIST=0.5, CRIT_NOEUD='TOUS',
+           TYPE_MAILLE='2D'),
+        _F(NOM='NORM', OPTION='FACE_NORMALE', ANGL_NAUT=(90.,), VERI_SIGNE='NON'),
+    ),
+    CREA_GROUP_NO=_F(NOM='ARC', OPTION='ENV_SPHERE', POINT=(0., 0.), RAYON=1., PRECISION=1.e-9),
+)
+IMPR_RESU(FORMAT='MED', UNITE=80, RESU=_F(MAILLAGE=MA))
+FIN()
+"#;
+    let result2 = dir.join("out2.rmed");
+    run_ok(&dir, "geom2", comm2, &[(20, &src2), (80, &result2)]);
+    let got2 = med::read_mesh(&result2, None).unwrap();
+    let y = |n: usize| m2.coords[n];
+    let disc: Vec<usize> = (0..m2.ncells())
+        .filter(|&c| m2.cells[c].iter().all(|&n| (y(n)[0] - 2.0).powi(2) + (y(n)[1] - 1.0).powi(2) <= 0.36))
+        .collect();
+    assert_eq!(disc.len(), 2, "the two edge segments at the corner (2, 1); the corner quadrangle reaches 0.71");
+    assert_eq!(got2.cell_groups["DISC"], disc);
+    let quads: Vec<usize> = (0..m2.ncells()).filter(|&c| m2.cell_types[c] == CellType::Quad4).collect();
+    assert_eq!(got2.cell_groups["STRIP"], quads);
+    let horizontal: Vec<usize> = (0..m2.ncells())
+        .filter(|&c| m2.cell_types[c] == CellType::Seg2 && y(m2.cells[c][0])[1] == y(m2.cells[c][1])[1])
+        .collect();
+    assert_eq!(horizontal.len(), 8);
+    assert_eq!(got2.cell_groups["NORM"], horizontal);
+    let arc: Vec<usize> =
+        (0..m2.nnodes()).filter(|&n| ((y(n)[0].powi(2) + y(n)[1].powi(2)).sqrt() - 1.0).abs() <= 1e-9).collect();
+    assert_eq!(arc.len(), 2);
+    assert_eq!(got2.node_groups["ARC"], arc);
+}
+
 #[test]
 fn noeud_ordo_on_a_quad8_box() {
     let dir = scratch!("ordo");
