@@ -423,6 +423,9 @@ pub struct Facet {
     /// Parent reference coordinates of the slave sub-cell's vertex off the facet: the facet's normal
     /// points away from it, from the − to the + side.
     pub inner: [f64; 3],
+    /// The slave sub-cell (its nodes' parent reference coordinates) and the facet's nodes among them,
+    /// when the facet is one of its faces: the side is then read from the sub-cell's own map.
+    pub face_of: Option<(Vec<[f64; 3]>, Vec<usize>)>,
 }
 
 /// The simplex type of a sub-cell from its node count.
@@ -523,6 +526,7 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
                                 slave: xc.signs[s].clone(),
                                 master: xc.signs[plus].clone(),
                                 inner: opposite(sc, f),
+                                face_of: None,
                             });
                         }
                         continue;
@@ -552,7 +556,8 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
                         }
                     }
                 }
-                out.push(Facet { cell: c, xi, slave, master, inner: opposite(sc, f) });
+                let sub = sc.nodes.iter().map(|&q| xc.cutting.points[q].xi).collect();
+                out.push(Facet { cell: c, xi, slave, master, inner: opposite(sc, f), face_of: Some((sub, f.clone())) });
             }
         }
     }
@@ -712,16 +717,49 @@ pub fn facet_points(
     // from the slave sub-cell together. In real coordinates a facet of a parent whose map is not affine
     // is curved, and the slave sub-cell's vertex off it (10⁻ᵏ·h away when the interface passes that
     // close to a node) can lie on its outer side: a distorted QUAD4 cut 1e-2·h from a vertex had its
-    // facet turned over (0.1·U).
+    // facet turned over (0.1·U). A curved sub-cell can hide its vertex behind its face in reference
+    // coordinates too, so where the facet is a face of the slave sub-cell the outward direction at each
+    // point is the sub-cell map's image of the direction from its reference vertex off the face to the
+    // point (a diffeomorphism maps outward vectors to outward vectors).
     let inner = facet.inner;
+    let sub = facet.face_of.as_ref().map(|(xis, face)| {
+        let st = subcell_type(dim, xis.len());
+        let rn = crate::fem::reference::node_coords(st);
+        let opp = (0..=dim).find(|l| !face[..dim].contains(l)).unwrap_or(0);
+        (st, xis, face, rn, rn[opp])
+    });
+    let mut sn = vec![0.0; sub.as_ref().map_or(0, |s| s.1.len())];
+    let mut sd = vec![[0.0; 3]; sn.len()];
     let mut side = 0.0;
-    let mut sgn_of = |tang: &[[f64; 3]; 2], xi: &[f64; 3], w: f64| {
+    let mut sgn_of = |tang: &[[f64; 3]; 2], xi: &[f64; 3], fshape: &[f64], w: f64| {
         let n = if dim == 2 {
             Vector3::new(tang[0][1], -tang[0][0], 0.0)
         } else {
             Vector3::from(tang[0]).cross(&Vector3::from(tang[1]))
         };
-        side += w * (0..dim).map(|k| n[k] * (xi[k] - inner[k])).sum::<f64>();
+        let out: [f64; 3] = match &sub {
+            Some((st, xis, face, rn, opp)) => {
+                // The point in the sub-cell's reference coordinates, and J_s (its point − opp).
+                let mut zs = [0.0; 3];
+                for (k, &l) in face.iter().enumerate() {
+                    for a in 0..3 {
+                        zs[a] += fshape[k] * rn[l][a];
+                    }
+                }
+                shape_and_deriv(*st, &zs, &mut sn, &mut sd);
+                let v: [f64; 3] = [0, 1, 2].map(|a| zs[a] - opp[a]);
+                let mut o = [0.0; 3];
+                for (k, xk) in xis.iter().enumerate() {
+                    let dv: f64 = (0..dim).map(|b| sd[k][b] * v[b]).sum();
+                    for a in 0..dim {
+                        o[a] += xk[a] * dv;
+                    }
+                }
+                o
+            }
+            None => [0, 1, 2].map(|k| xi[k] - inner[k]),
+        };
+        side += w * (0..dim).map(|k| n[k] * out[k]).sum::<f64>();
     };
     for (q, wq) in rule.points.iter().zip(&rule.weights) {
         shape_and_deriv(ft, q, &mut n, &mut d);
@@ -759,7 +797,7 @@ pub fn facet_points(
         if gn.norm_squared() == 0.0 || measure == 0.0 {
             return Err("degenerate facet (zero measure or level-set gradient)".into());
         }
-        sgn_of(&tang, &xi, *wq);
+        sgn_of(&tang, &xi, &n, *wq);
         let nrm = geo / measure;
         // τ1: e_x projected on the tangent plane, (I - n nᵀ) e_x, or e_y's
         // projection when n ∥ e_x.
