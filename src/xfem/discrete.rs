@@ -567,7 +567,12 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
 /// Those of the master-side faces on the interface `candidates` (sub-cell, face points) that lie inside
 /// the slave face of points `face`, when they cover it exactly (by measure); none otherwise (the face
 /// is not split, or the master side is in another cell: an interface along the parent's boundary).
-/// `tol` is a length.
+/// `tol` is a length. Faces of linear sub-cells are compared in the parent's reference coordinates,
+/// where they are TOPOSE's straight simplices: in real coordinates those of a parent whose map is not
+/// affine are curved, and a piece of a face was not found in it (a junction 1e-1 … 1e-3·h from a vertex
+/// of a distorted QUAD4: an error proportional to that distance, 1.2e-2·U at 0.1·h). Faces of quadratic
+/// sub-cells follow the interface, straight in real coordinates where it is a plane, and are compared
+/// there.
 fn pieces_of(
     cut: &super::topose::Cutting,
     candidates: &[(usize, Vec<usize>)],
@@ -575,8 +580,21 @@ fn pieces_of(
     face: &[usize],
     tol: f64,
 ) -> Vec<(usize, Vec<usize>)> {
-    let x = |q: usize| Vector3::from(cut.points[q].x);
+    let linear = face.len() == dim;
+    if dim == 2 && !linear {
+        return pieces_of_seg3(cut, candidates, face, tol);
+    }
+    let x = |q: usize| Vector3::from(if linear { cut.points[q].xi } else { cut.points[q].x });
     let outer: Vec<Vector3<f64>> = face[..dim].iter().map(|&q| x(q)).collect();
+    // `tol` in reference lengths on linear faces, in proportion to the face's first side.
+    let real = (Vector3::from(cut.points[face[1]].x) - Vector3::from(cut.points[face[0]].x)).norm();
+    let tol = if !linear {
+        tol
+    } else if real > 0.0 {
+        tol * (outer[1] - outer[0]).norm() / real
+    } else {
+        0.0
+    };
     let measure = |v: &[Vector3<f64>]| {
         if dim == 2 {
             (v[1] - v[0]).norm()
@@ -622,6 +640,60 @@ fn pieces_of(
     }
     let whole = measure(&outer);
     if pieces.is_empty() || (covered - whole).abs() > 1e-9 * whole.max(f64::MIN_POSITIVE) {
+        return Vec::new();
+    }
+    pieces
+}
+
+/// [`pieces_of`] for a slave face of a quadratic sub-cell in 2D (SEG3: ends, middle): the candidates'
+/// points are placed on the face's own quadratic map ξ(s) in the parent's reference coordinates, on
+/// which TOPOSE found them (a junction point on a sub-edge, the middles of its halves); a piece lies in
+/// the face when its ends and middle are on it, and the pieces cover it when their parameter intervals
+/// add up to [0, 1]. The chord in real coordinates misses a junction point on a bent side by the bend
+/// (a junction 0.1·h from a vertex of a distorted QUAD8: 6.0e-2·U).
+fn pieces_of_seg3(
+    cut: &super::topose::Cutting,
+    candidates: &[(usize, Vec<usize>)],
+    face: &[usize],
+    tol: f64,
+) -> Vec<(usize, Vec<usize>)> {
+    let p = |q: usize| Vector3::from(cut.points[q].xi);
+    let (a, b, m) = (p(face[0]), p(face[1]), p(face[2]));
+    let curve = |s: f64| a * (2.0 * (1.0 - s) * (0.5 - s)) + m * (4.0 * s * (1.0 - s)) + b * (2.0 * s * (s - 0.5));
+    let deriv = |s: f64| a * (4.0 * s - 3.0) + m * (4.0 - 8.0 * s) + b * (4.0 * s - 1.0);
+    let chord = (b - a).norm();
+    let real = (Vector3::from(cut.points[face[1]].x) - Vector3::from(cut.points[face[0]].x)).norm();
+    if chord == 0.0 || real == 0.0 {
+        return Vec::new();
+    }
+    let eps = (1e-9 + tol / real) * chord;
+    // The parameter of y on the face, when y is on it.
+    let param = |y: Vector3<f64>| -> Option<f64> {
+        let e = b - a;
+        let mut s = (y - a).dot(&e) / e.norm_squared();
+        for _ in 0..50 {
+            let (r, d) = (curve(s) - y, deriv(s));
+            let step = r.dot(&d) / d.norm_squared().max(f64::MIN_POSITIVE);
+            s -= step;
+            if step.abs() <= 1e-15 {
+                break;
+            }
+        }
+        let lim = eps / chord;
+        ((curve(s) - y).norm() <= eps && s >= -lim && s <= 1.0 + lim).then_some(s)
+    };
+    let mut pieces = Vec::new();
+    let mut covered = 0.0;
+    for (t, pts) in candidates {
+        let (Some(s0), Some(s1), Some(sm)) = (param(p(pts[0])), param(p(pts[1])), param(p(pts[2]))) else {
+            continue;
+        };
+        if (sm - s0) * (s1 - sm) > 0.0 {
+            covered += (s1 - s0).abs();
+            pieces.push((*t, pts.clone()));
+        }
+    }
+    if pieces.is_empty() || (covered - 1.0).abs() > 1e-9 {
         return Vec::new();
     }
     pieces
