@@ -158,18 +158,50 @@ pub fn bulk_points(t: CellType, coords: &[[f64; 3]], xm: &XfemModel, cell: usize
     subcell_points(t, coords, xm, cell, false)
 }
 
-/// The degree a rule needs on a curved sub-cell of a parent of type `t` to integrate the parent's
-/// gradients exactly (the internal forces of a uniform stress): the gradients, of degree d in the
-/// parent's reference coordinates, composed with the quadratic sub-cell map (2d), times its Jacobian
-/// determinant (degree dim).
-fn curved_subcell_degree(t: CellType) -> usize {
-    let d = match t {
-        CellType::Tria6 | CellType::Tetra10 => 1,
-        CellType::Quad8 | CellType::Penta15 => 2,
-        CellType::Hexa20 => 3,
-        _ => 0,
-    };
-    2 * d + t.dim()
+/// The total degree of the shape functions of a cell type in its reference coordinates.
+fn shape_degree(t: CellType) -> usize {
+    match t {
+        CellType::Seg2 | CellType::Tria3 | CellType::Tetra4 => 1,
+        CellType::Seg3 | CellType::Quad4 | CellType::Tria6 | CellType::Tetra10 | CellType::Penta6 => 2,
+        CellType::Quad8 | CellType::Hexa8 | CellType::Penta15 => 3,
+        _ => 4,
+    }
+}
+
+/// Whether the map of a cell from its reference cell is affine: its Jacobian the same at every node
+/// (a simplex with straight edges and mid-nodes at their middles, a parallelogram or parallelepiped).
+/// Distorted quadrangles and hexahedra, and quadratic cells with curved edges, are not.
+pub fn affine(t: CellType, coords: &[[f64; 3]]) -> bool {
+    let nodes = crate::fem::reference::node_coords(t);
+    let j0 = jacobian(t, coords, &nodes[0]);
+    let scale = j0.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    nodes.iter().skip(1).all(|xi| {
+        let j = jacobian(t, coords, xi);
+        j.iter().flatten().zip(j0.iter().flatten()).all(|(a, b)| (a - b).abs() <= 1e-12 * scale)
+    })
+}
+
+/// The degree a rule needs on a sub-cell whose map from its reference simplex is of degree `s` (1
+/// straight, 2 curved) in a parent of type `t` to integrate the parent's gradients exactly (the
+/// internal forces of a uniform stress): ∇N·det J = adj(J)ᵀ ∇_ξN, of degree p − 1 + (dim − 1)(p − 1)
+/// in the parent's reference coordinates for shape functions of degree p (p − 1 when the parent's map
+/// is affine, adj(J) constant), composed with the sub-cell map (×s), times its Jacobian determinant
+/// (degree dim (s − 1)). 9 on a curved sub-cell of an affine HEXA20 (Code_Aster's FPG15 is of degree
+/// 5), 6 on a straight one of a distorted HEXA8, 21 on a curved one of a curved HEXA20.
+fn subcell_degree(t: CellType, affine: bool, s: usize) -> usize {
+    let (p, dim) = (shape_degree(t), t.dim());
+    let adj = if affine { 0 } else { (dim - 1) * (p - 1) };
+    s * (p - 1 + adj) + dim * (s - 1)
+}
+
+/// The degree a rule needs on a facet whose map from its reference simplex is of degree `s` in a
+/// parent of type `t` to integrate the parent's shape functions times the facet's normal measure
+/// exactly (the forces of a uniform traction): N of degree p composed with the facet map, times the
+/// product of dim − 1 tangents J·dξ/ds (degree s (p − 1) + s − 1 each, s − 1 when J is constant).
+fn facet_degree(t: CellType, affine: bool, s: usize) -> usize {
+    let (p, dim) = (shape_degree(t), t.dim());
+    let pj = if affine { 0 } else { p - 1 };
+    s * p + (dim - 1) * (s * pj + s - 1)
 }
 
 /// Whether a quadratic simplex (its nodes' reference coordinates in Code_Aster's order) is curved: a
@@ -186,8 +218,8 @@ fn is_curved(st: CellType, xis: &[[f64; 3]]) -> bool {
 
 /// The integration points of the sub-cells of cut cell `cell`: Code_Aster's sub-cell rule
 /// ([`subcell_rule`]), or with `exact`, on a curved sub-cell, a rule of the degree that integrates the
-/// internal forces of a uniform stress exactly ([`curved_subcell_degree`]: 9 for a HEXA20 parent, where
-/// Code_Aster's FPG15 is of degree 5), so that the linear fields stay exact on curved interfaces.
+/// internal forces of a uniform stress exactly ([`subcell_degree`]: 9 for an affine HEXA20 parent, where
+/// Code_Aster's FPG15 is of degree 5; straight sub-cells too when the parent's map is not affine), so that the linear fields stay exact on curved interfaces.
 fn subcell_points(
     t: CellType,
     coords: &[[f64; 3]],
@@ -202,18 +234,20 @@ fn subcell_points(
         None => return Ok(Vec::new()),
     };
     let base = subcell_rule(dim);
-    let curved_rule = (exact && curved_subcell_degree(t) > base.degree)
-        .then(|| rule_for_degree(RefDomain::of(st), curved_subcell_degree(t)));
+    // With `exact`, the rules for straight (s = 1) and curved (s = 2) sub-cells when they are above
+    // Code_Aster's.
+    let flat = exact && affine(t, coords);
+    let upgraded: [Option<QuadratureRule>; 2] = [1, 2].map(|s| {
+        let deg = subcell_degree(t, flat, s);
+        (exact && deg > base.degree && (s == 2 || !flat)).then(|| rule_for_degree(RefDomain::of(st), deg))
+    });
     let nsub = st.nnodes();
     let mut out = Vec::new();
     let mut n = vec![0.0; nsub];
     let mut d = vec![[0.0; 3]; nsub];
     for (s, sc) in xc.cutting.subcells.iter().enumerate() {
         let xis: Vec<[f64; 3]> = sc.nodes.iter().map(|&p| xc.cutting.points[p].xi).collect();
-        let rule = match &curved_rule {
-            Some(r) if is_curved(st, &xis) => r,
-            _ => &base,
-        };
+        let rule = upgraded[usize::from(is_curved(st, &xis))].as_ref().unwrap_or(&base);
         for (q, wq) in rule.points.iter().zip(&rule.weights) {
             shape_and_deriv(st, q, &mut n, &mut d);
             let mut xi = [0.0; 3];
@@ -389,6 +423,9 @@ pub struct Facet {
     /// Parent reference coordinates of the slave sub-cell's vertex off the facet: the facet's normal
     /// points away from it, from the − to the + side.
     pub inner: [f64; 3],
+    /// The slave sub-cell (its nodes' parent reference coordinates) and the facet's nodes among them,
+    /// when the facet is one of its faces: the side is then read from the sub-cell's own map.
+    pub face_of: Option<(Vec<[f64; 3]>, Vec<usize>)>,
 }
 
 /// The simplex type of a sub-cell from its node count.
@@ -489,6 +526,7 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
                                 slave: xc.signs[s].clone(),
                                 master: xc.signs[plus].clone(),
                                 inner: opposite(sc, f),
+                                face_of: None,
                             });
                         }
                         continue;
@@ -518,7 +556,8 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
                         }
                     }
                 }
-                out.push(Facet { cell: c, xi, slave, master, inner: opposite(sc, f) });
+                let sub = sc.nodes.iter().map(|&q| xc.cutting.points[q].xi).collect();
+                out.push(Facet { cell: c, xi, slave, master, inner: opposite(sc, f), face_of: Some((sub, f.clone())) });
             }
         }
     }
@@ -528,7 +567,12 @@ pub fn facets(mesh: &Mesh, xm: &XfemModel, g: usize, tol: f64) -> Vec<Facet> {
 /// Those of the master-side faces on the interface `candidates` (sub-cell, face points) that lie inside
 /// the slave face of points `face`, when they cover it exactly (by measure); none otherwise (the face
 /// is not split, or the master side is in another cell: an interface along the parent's boundary).
-/// `tol` is a length.
+/// `tol` is a length. Faces of linear sub-cells are compared in the parent's reference coordinates,
+/// where they are TOPOSE's straight simplices: in real coordinates those of a parent whose map is not
+/// affine are curved, and a piece of a face was not found in it (a junction 1e-1 … 1e-3·h from a vertex
+/// of a distorted QUAD4: an error proportional to that distance, 1.2e-2·U at 0.1·h). Faces of quadratic
+/// sub-cells follow the interface, straight in real coordinates where it is a plane, and are compared
+/// there.
 fn pieces_of(
     cut: &super::topose::Cutting,
     candidates: &[(usize, Vec<usize>)],
@@ -536,8 +580,21 @@ fn pieces_of(
     face: &[usize],
     tol: f64,
 ) -> Vec<(usize, Vec<usize>)> {
-    let x = |q: usize| Vector3::from(cut.points[q].x);
+    let linear = face.len() == dim;
+    if dim == 2 && !linear {
+        return pieces_of_seg3(cut, candidates, face, tol);
+    }
+    let x = |q: usize| Vector3::from(if linear { cut.points[q].xi } else { cut.points[q].x });
     let outer: Vec<Vector3<f64>> = face[..dim].iter().map(|&q| x(q)).collect();
+    // `tol` in reference lengths on linear faces, in proportion to the face's first side.
+    let real = (Vector3::from(cut.points[face[1]].x) - Vector3::from(cut.points[face[0]].x)).norm();
+    let tol = if !linear {
+        tol
+    } else if real > 0.0 {
+        tol * (outer[1] - outer[0]).norm() / real
+    } else {
+        0.0
+    };
     let measure = |v: &[Vector3<f64>]| {
         if dim == 2 {
             (v[1] - v[0]).norm()
@@ -583,6 +640,60 @@ fn pieces_of(
     }
     let whole = measure(&outer);
     if pieces.is_empty() || (covered - whole).abs() > 1e-9 * whole.max(f64::MIN_POSITIVE) {
+        return Vec::new();
+    }
+    pieces
+}
+
+/// [`pieces_of`] for a slave face of a quadratic sub-cell in 2D (SEG3: ends, middle): the candidates'
+/// points are placed on the face's own quadratic map ξ(s) in the parent's reference coordinates, on
+/// which TOPOSE found them (a junction point on a sub-edge, the middles of its halves); a piece lies in
+/// the face when its ends and middle are on it, and the pieces cover it when their parameter intervals
+/// add up to [0, 1]. The chord in real coordinates misses a junction point on a bent side by the bend
+/// (a junction 0.1·h from a vertex of a distorted QUAD8: 6.0e-2·U).
+fn pieces_of_seg3(
+    cut: &super::topose::Cutting,
+    candidates: &[(usize, Vec<usize>)],
+    face: &[usize],
+    tol: f64,
+) -> Vec<(usize, Vec<usize>)> {
+    let p = |q: usize| Vector3::from(cut.points[q].xi);
+    let (a, b, m) = (p(face[0]), p(face[1]), p(face[2]));
+    let curve = |s: f64| a * (2.0 * (1.0 - s) * (0.5 - s)) + m * (4.0 * s * (1.0 - s)) + b * (2.0 * s * (s - 0.5));
+    let deriv = |s: f64| a * (4.0 * s - 3.0) + m * (4.0 - 8.0 * s) + b * (4.0 * s - 1.0);
+    let chord = (b - a).norm();
+    let real = (Vector3::from(cut.points[face[1]].x) - Vector3::from(cut.points[face[0]].x)).norm();
+    if chord == 0.0 || real == 0.0 {
+        return Vec::new();
+    }
+    let eps = (1e-9 + tol / real) * chord;
+    // The parameter of y on the face, when y is on it.
+    let param = |y: Vector3<f64>| -> Option<f64> {
+        let e = b - a;
+        let mut s = (y - a).dot(&e) / e.norm_squared();
+        for _ in 0..50 {
+            let (r, d) = (curve(s) - y, deriv(s));
+            let step = r.dot(&d) / d.norm_squared().max(f64::MIN_POSITIVE);
+            s -= step;
+            if step.abs() <= 1e-15 {
+                break;
+            }
+        }
+        let lim = eps / chord;
+        ((curve(s) - y).norm() <= eps && s >= -lim && s <= 1.0 + lim).then_some(s)
+    };
+    let mut pieces = Vec::new();
+    let mut covered = 0.0;
+    for (t, pts) in candidates {
+        let (Some(s0), Some(s1), Some(sm)) = (param(p(pts[0])), param(p(pts[1])), param(p(pts[2]))) else {
+            continue;
+        };
+        if (sm - s0) * (s1 - sm) > 0.0 {
+            covered += (s1 - s0).abs();
+            pieces.push((*t, pts.clone()));
+        }
+    }
+    if pieces.is_empty() || (covered - 1.0).abs() > 1e-9 {
         return Vec::new();
     }
     pieces
@@ -649,19 +760,16 @@ pub fn facet_points(
         _ => CellType::Tria6,
     };
     let nf = ft.nnodes();
-    // On a curved facet, a rule that integrates the parent's shape functions times the facet's normal
-    // measure exactly (the forces of a uniform traction): degree 2p + dim − 1 for shape functions of
-    // degree p (10 on a HEXA20's), above the ORDRE_INT rules of Code_Aster (at most degree 7 on
-    // segments and 5 on triangles), which are exact on flat facets only.
-    let p = match t {
-        CellType::Tria6 | CellType::Tetra10 => 2,
-        CellType::Quad8 | CellType::Penta15 => 3,
-        CellType::Hexa20 => 4,
-        _ => 1,
-    };
+    // On a curved facet, or any facet of a parent whose map is not affine, a rule that integrates the
+    // parent's shape functions times the facet's normal measure exactly (the forces of a uniform
+    // traction, [`facet_degree`]: 10 on a curved facet of an affine HEXA20, 7 on a flat one of a
+    // distorted HEXA8), above the ORDRE_INT rules of Code_Aster (at most degree 7 on segments and 5 on
+    // triangles), which are exact on flat facets of affine parents only.
+    let (curved, flat) = (is_curved(ft, &facet.xi), affine(t, coords));
+    let need = facet_degree(t, flat, 1 + usize::from(curved));
     let upgraded;
-    let rule = if is_curved(ft, &facet.xi) && rule.degree < 2 * p + dim - 1 {
-        upgraded = rule_for_degree(RefDomain::of(ft), 2 * p + dim - 1);
+    let rule = if (curved || !flat) && rule.degree < need {
+        upgraded = rule_for_degree(RefDomain::of(ft), need);
         &upgraded
     } else {
         rule
@@ -675,10 +783,55 @@ pub fn facet_points(
     // same on a flat facet, may turn past the facet's tangent plane at some of its points where the
     // level set is curved (a sphere seen by a HEXA20 near a corner: 1e-3 of the cell off), which flipped
     // the normal there.
-    let inner = crate::fem::reference::map_to_real(t, coords, &facet.inner);
+    //
+    // The side is judged in the parent's reference coordinates, where the sub-cells are the simplices
+    // TOPOSE made: the real normal is cof(J) times the reference one (det J > 0), so both point away
+    // from the slave sub-cell together. In real coordinates a facet of a parent whose map is not affine
+    // is curved, and the slave sub-cell's vertex off it (10⁻ᵏ·h away when the interface passes that
+    // close to a node) can lie on its outer side: a distorted QUAD4 cut 1e-2·h from a vertex had its
+    // facet turned over (0.1·U). A curved sub-cell can hide its vertex behind its face in reference
+    // coordinates too, so where the facet is a face of the slave sub-cell the outward direction at each
+    // point is the sub-cell map's image of the direction from its reference vertex off the face to the
+    // point (a diffeomorphism maps outward vectors to outward vectors).
+    let inner = facet.inner;
+    let sub = facet.face_of.as_ref().map(|(xis, face)| {
+        let st = subcell_type(dim, xis.len());
+        let rn = crate::fem::reference::node_coords(st);
+        let opp = (0..=dim).find(|l| !face[..dim].contains(l)).unwrap_or(0);
+        (st, xis, face, rn, rn[opp])
+    });
+    let mut sn = vec![0.0; sub.as_ref().map_or(0, |s| s.1.len())];
+    let mut sd = vec![[0.0; 3]; sn.len()];
     let mut side = 0.0;
-    let mut sgn_of = |geo: &Vector3<f64>, x: &[f64; 3], w: f64| {
-        side += w * (0..dim).map(|k| geo[k] * (x[k] - inner[k])).sum::<f64>();
+    let mut sgn_of = |tang: &[[f64; 3]; 2], xi: &[f64; 3], fshape: &[f64], w: f64| {
+        let n = if dim == 2 {
+            Vector3::new(tang[0][1], -tang[0][0], 0.0)
+        } else {
+            Vector3::from(tang[0]).cross(&Vector3::from(tang[1]))
+        };
+        let out: [f64; 3] = match &sub {
+            Some((st, xis, face, rn, opp)) => {
+                // The point in the sub-cell's reference coordinates, and J_s (its point − opp).
+                let mut zs = [0.0; 3];
+                for (k, &l) in face.iter().enumerate() {
+                    for a in 0..3 {
+                        zs[a] += fshape[k] * rn[l][a];
+                    }
+                }
+                shape_and_deriv(*st, &zs, &mut sn, &mut sd);
+                let v: [f64; 3] = [0, 1, 2].map(|a| zs[a] - opp[a]);
+                let mut o = [0.0; 3];
+                for (k, xk) in xis.iter().enumerate() {
+                    let dv: f64 = (0..dim).map(|b| sd[k][b] * v[b]).sum();
+                    for a in 0..dim {
+                        o[a] += xk[a] * dv;
+                    }
+                }
+                o
+            }
+            None => [0, 1, 2].map(|k| xi[k] - inner[k]),
+        };
+        side += w * (0..dim).map(|k| n[k] * out[k]).sum::<f64>();
     };
     for (q, wq) in rule.points.iter().zip(&rule.weights) {
         shape_and_deriv(ft, q, &mut n, &mut d);
@@ -716,7 +869,7 @@ pub fn facet_points(
         if gn.norm_squared() == 0.0 || measure == 0.0 {
             return Err("degenerate facet (zero measure or level-set gradient)".into());
         }
-        sgn_of(&geo, &crate::fem::reference::map_to_real(t, coords, &xi), *wq);
+        sgn_of(&tang, &xi, &n, *wq);
         let nrm = geo / measure;
         // τ1: e_x projected on the tangent plane, (I - n nᵀ) e_x, or e_y's
         // projection when n ∥ e_x.

@@ -17,22 +17,30 @@ use std::time::Instant;
 
 /// A box of `n` cells of size 1 per axis, written to `dir`: its path, its vertices (the nodes at a
 /// cell's vertex) and the mesh.
-fn make_box(dir: &Path, t: CellType, n: usize) -> (PathBuf, Vec<[f64; 3]>, Mesh) {
+fn make_box(dir: &Path, t: CellType, n: usize) -> Written {
     let dim = t.dim();
     let m = box_mesh(t, &vec![n; dim], &vec![n as f64; dim]).unwrap();
-    let path = dir.join(format!("{}.med", t.name()));
-    aster::med::write_mesh(&path, &m, "MAIL").unwrap();
+    written(&dir.join(format!("{}.med", t.name())), m)
+}
+
+/// A mesh written to a file: its path, its vertices and the mesh ([`written`]).
+pub(super) type Written = (PathBuf, Vec<[f64; 3]>, Mesh);
+
+/// Write `m` to `path`: the path, the mesh's vertices (the nodes at a vertex of a cell of its dimension)
+/// and the mesh.
+pub(super) fn written(path: &Path, m: Mesh) -> Written {
+    aster::med::write_mesh(path, &m, "MAIL").unwrap();
     let mut vertices: Vec<usize> = Vec::new();
     for (c, nodes) in m.cells.iter().enumerate() {
         let ct = m.cell_types[c];
-        if ct.dim() == dim {
+        if ct.dim() == m.dim {
             vertices.extend(&nodes[..ct.nvertices()]);
         }
     }
     vertices.sort();
     vertices.dedup();
     let coords = vertices.iter().map(|&v| m.coords[v]).collect();
-    (path, coords, m)
+    (path.to_path_buf(), coords, m)
 }
 
 /// The level set of a circle or sphere as a Python expression of X, Y (, Z).
@@ -43,7 +51,7 @@ fn sphere(dim: usize, c: &[f64; 3], r: f64) -> String {
 }
 
 /// A random unit vector of dimension `dim`.
-fn unit(rng: &mut Rng, dim: usize) -> [f64; 3] {
+pub(super) fn unit(rng: &mut Rng, dim: usize) -> [f64; 3] {
     loop {
         let mut u = [0.0; 3];
         for c in u.iter_mut().take(dim) {
@@ -101,23 +109,28 @@ fn random_sphere(rng: &mut Rng, dim: usize, l: f64, nodes: &[[f64; 3]], vertices
     }
 }
 
-/// Run `count` random cuts over the cell types `types` in turn (boxes of `n` cells per axis): every
-/// one must pass.
-fn random_spheres(types: &[CellType], n: usize, count: usize, tag: &str) {
+/// Run `count` random cuts over the cell types `types` in turn, each drawn by `draw` from the scratch
+/// folder, the generator and the cell type (the mesh's path, the level set and a label), on boxes of
+/// side `l`: every one must pass.
+pub(super) fn random_cuts(
+    types: &[CellType],
+    l: f64,
+    count: usize,
+    tag: &str,
+    mut draw: impl FnMut(&Path, &mut Rng, CellType) -> (PathBuf, String, String),
+) {
     let seed = seed();
     let mut rng = Rng(seed);
     let dir = scratch!(tag);
     let start = Instant::now();
-    let meshes: Vec<_> = types.iter().map(|&t| make_box(&dir, t, n)).collect();
     let (mut failures, mut worst, mut worst_cut) = (Vec::new(), 0.0f64, String::new());
     for i in 0..count {
         let t = types[i % types.len()];
-        let (path, vertices, m) = &meshes[i % types.len()];
         let dim = t.dim();
-        let (phi, label) = random_sphere(&mut rng, dim, n as f64, &m.coords, vertices);
-        let o = run_scene(&dir, path, &scene_on(dim, &phi, 1e-8, n as f64), &format!("cut{i}"), 8 * dim);
+        let (path, phi, label) = draw(&dir, &mut rng, t);
+        let o = run_scene(&dir, &path, &scene_on(dim, &phi, 1e-8, l), &format!("cut{i}"), 8 * dim);
         if o.worst > worst {
-            (worst, worst_cut) = (o.worst, format!("{} {label}: {phi}", t.name()));
+            (worst, worst_cut) = (o.worst, format!("{} {label}: phi = {phi}", t.name()));
         }
         if !o.ok {
             failures.push(format!("{} {label}: phi = {phi}: {}", t.name(), o.message));
@@ -132,6 +145,17 @@ fn random_spheres(types: &[CellType], n: usize, count: usize, tag: &str) {
         failures.len()
     );
     assert!(failures.is_empty(), "seed {seed} (replay with ASTER_PROPTEST_SEED={seed}):\n{}", failures.join("\n"));
+}
+
+/// Random spheres ([`random_sphere`]) on boxes of `n` cells per axis of the cell types `types` in turn.
+fn random_spheres(types: &[CellType], n: usize, count: usize, tag: &str) {
+    let mut meshes: Vec<Option<Written>> = (0..types.len()).map(|_| None).collect();
+    random_cuts(types, n as f64, count, tag, |dir, rng, t| {
+        let k = types.iter().position(|&u| u == t).unwrap_or(0);
+        let (path, vertices, m) = meshes[k].get_or_insert_with(|| make_box(dir, t, n));
+        let (phi, label) = random_sphere(rng, t.dim(), n as f64, &m.coords, vertices);
+        (path.clone(), phi, label)
+    });
 }
 
 /// Random circles on 4 × 4 boxes of QUAD8, TRIA6, QUAD4 and TRIA3 (40 by default; docs/stability.md

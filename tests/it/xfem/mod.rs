@@ -3,6 +3,7 @@
 //! on a cut cell, and the coupled flow through a fluid-filled cohesive interface.
 mod cohesive;
 mod curved;
+mod distorted;
 mod fluid_interface;
 mod hard_cases;
 mod levelsets;

@@ -694,9 +694,15 @@ fn junction_scene(dim: usize, d: f64, fiss2_first: bool) -> String {
     } else {
         ("(Z-0.5*X-0.5)/1.118033988749895", "(Z+0.7*X-1.7)/1.2206555615733703", "(1.0, 1.0, 2.0)")
     };
+    junction_on(dim, f1, f2, point, d, fiss2_first, L)
+}
+
+/// The glued scene on a box of side `l` with FISS2 (level set `f2`) branching off FISS1 (`f1`) on the
+/// side of FISS1 that holds `point`, both shifted by `d`; FISS2's zone first when `fiss2_first`.
+pub(super) fn junction_on(dim: usize, f1: &str, f2: &str, point: &str, d: f64, fiss2_first: bool, l: f64) -> String {
     let para = if dim == 2 { r#"["X", "Y"]"# } else { r#"["X", "Y", "Z"]"# };
     let zone2 = r#"_F(FISS_MAIT=FISS2, INTEGRATION="GAUSS", ORDRE_INT=4, ALGO_CONT="CZM", ALGO_LAGR="VERSION2", RELATION="CZM_LIN_MIX")"#;
-    let single = scene(dim, &format!("{f1}-{d:e}"), 1e-8);
+    let single = scene_on(dim, &format!("{f1}-{d:e}"), 1e-8, l);
     let zones = single.replace("ZONE=_F(FISS_MAIT=FISS,", "ZONE=(_F(FISS_MAIT=FISS,");
     let zones = if fiss2_first {
         zones.replace("ZONE=(_F(FISS_MAIT=FISS,", &format!("ZONE=({zone2}, _F(FISS_MAIT=FISS,")).replacen(
