@@ -355,8 +355,13 @@ fn check_and_run(comm_name: &str, src: &str, case_units: &[(i64, PathBuf, Dir)],
             ran
         }
         Err(_) => {
-            eprintln!(
-                "the run did not return within {:?}: a hang (see target/tmp/fuzz-pipeline-last-mutant.comm)",
+            // Written to the process's stderr itself: the test harness captures `eprintln!`, and what it
+            // captured is lost when the process exits here.
+            use std::io::Write;
+            let _ = writeln!(
+                std::io::stderr(),
+                "fuzz-pipeline: {comm_name}: the run did not return within {:?}: a hang (see \
+                 target/tmp/fuzz-pipeline-last-mutant.comm)",
                 limit * 2
             );
             std::process::exit(101);
