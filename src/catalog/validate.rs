@@ -141,6 +141,19 @@ struct Level<'a> {
     supported: bool,
 }
 
+impl<'a> Level<'a> {
+    /// The level of the factor keyword `name` inside this one.
+    fn child(&self, name: &str) -> Level<'a> {
+        Level {
+            cmd: self.cmd,
+            path: format!("{}/{}", self.path, name),
+            open: false,
+            new: self.new,
+            supported: self.supported,
+        }
+    }
+}
+
 /// Where a keyword is declared: active now, or only inside an inactive block.
 enum Found<'e> {
     Active,
@@ -274,13 +287,7 @@ impl<'a> Level<'a> {
                                 return Err(self.err(format!("mandatory keyword '{}' is missing", f.name), span))
                             }
                             FactStatut::D => {
-                                let lvl = Level {
-                                    cmd: self.cmd,
-                                    path: format!("{}/{}", self.path, f.name),
-                                    open: false,
-                                    new: self.new,
-                                    supported: self.supported,
-                                };
+                                let lvl = self.child(f.name);
                                 Some((vec![lvl.check(&f.entries, &f.rules, Vec::new(), span, &chain)?], span, true))
                             }
                             FactStatut::F => None,
@@ -426,13 +433,7 @@ impl<'a> Level<'a> {
                 ));
             }
         }
-        let lvl = Level {
-            cmd: self.cmd,
-            path: format!("{}/{}", self.path, f.name),
-            open: false,
-            new: self.new,
-            supported: self.supported,
-        };
+        let lvl = self.child(f.name);
         let mut out = Vec::new();
         for occ in occurrences {
             let Value::Dict(d) = &occ else {

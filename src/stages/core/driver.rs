@@ -360,7 +360,6 @@ impl<'a, P: Physics> Driver<'a, P> {
         // Newton whose corrections reuse it (`hold`); a single solve (MECA_STATIQUE) keeps nothing beside
         // its factors.
         let sol = if hold {
-            *self.kept.borrow_mut() = None;
             self.solve_kept(Some((k, true)), &rhs, &opts)
         } else if phys.linear() && self.cfg.times.len() > 2 {
             self.solve_kept(Some((k, false)), &rhs, &opts)
@@ -500,7 +499,6 @@ impl<'a, P: Physics> Driver<'a, P> {
         // serves every correction of the step); the others solve with the matrix held last.
         let reac = if self.phys.linear() { 1 } else { self.cfg.reac_iter };
         let modified = reac != 1;
-        let mut held = false;
         let mut unew = match self.phys.prediction() {
             Prediction::Tangent => {
                 // The tangent and internal forces of the start state, the prescribed increments on the
@@ -520,7 +518,8 @@ impl<'a, P: Physics> Driver<'a, P> {
                 map_values.expand(&kept)
             }
         };
-        held = held || (modified && self.phys.prediction() == Prediction::Tangent);
+        // Whether a matrix is held for the next correction (the prediction's, under REAC_ITER ≠ 1).
+        let mut held = modified && self.phys.prediction() == Prediction::Tangent;
         // Corrections made (the prediction's solve counts as the first for the test).
         let predicted = self.phys.prediction() == Prediction::Tangent;
         let mut iters = 0;

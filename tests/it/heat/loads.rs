@@ -151,28 +151,33 @@ FIN()
 }
 
 /// CALC_CHAMP SOUR_ELGA (Joule heating of a potential computed as a temperature): a uniform gradient
-/// g = 10/2 across a 2 × 1 box with λ = 2 gives |λg|²/λ = 50 at every point; the steps asked by INST.
+/// g = ΔT/2 across a 2 × 1 box gives |λg|²/λ = λg² at every point; the steps asked by INST.
 #[test]
 fn sour_elga_of_a_uniform_gradient() {
     let dir = scratch!("sour_elga");
     std::fs::create_dir_all(&dir).unwrap();
+    let (lambda, dt) = (2.0_f64, 10.0_f64);
+    let sour = lambda * (dt / 2.0).powi(2);
     let comm = r#"
 DEBUT(CODE="OUI")
 MA = LIRE_MAILLAGE(FORMAT="MED", UNITE=20)
 MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT="OUI", PHENOMENE="THERMIQUE", MODELISATION="PLAN"))
-MAT = DEFI_MATERIAU(THER=_F(LAMBDA=2.0))
+MAT = DEFI_MATERIAU(THER=_F(LAMBDA=@L@))
 CM = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT="OUI", MATER=MAT))
-CH = AFFE_CHAR_THER(MODELE=MO, TEMP_IMPO=(_F(GROUP_NO="GAUCHE", TEMP=0.0), _F(GROUP_NO="DROITE", TEMP=10.0)))
+CH = AFFE_CHAR_THER(MODELE=MO, TEMP_IMPO=(_F(GROUP_NO="GAUCHE", TEMP=0.0), _F(GROUP_NO="DROITE", TEMP=@DT@)))
 RES = THER_LINEAIRE(MODELE=MO, CHAM_MATER=CM, EXCIT=_F(CHARGE=CH), TYPE_CALCUL="STAT",
                     INCREMENT=_F(LIST_INST=DEFI_LIST_REEL(VALE=(0.0, 1.0))))
 RES = CALC_CHAMP(reuse=RES, RESULTAT=RES, INST=1.0, THERMIQUE=("SOUR_ELGA",))
 TEST_RESU(RESU=(_F(RESULTAT=RES, INST=1.0, NOM_CHAM="SOUR_ELGA", NOM_CMP="SOUR", TYPE_TEST="MAX",
-                   VALE_CALC=50.0, VALE_REFE=50.0, PRECISION=1e-9, REFERENCE="ANALYTIQUE"),
+                   VALE_CALC=@S@, VALE_REFE=@S@, PRECISION=1e-9, REFERENCE="ANALYTIQUE"),
                 _F(RESULTAT=RES, INST=1.0, NOM_CHAM="SOUR_ELGA", NOM_CMP="SOUR", TYPE_TEST="MIN",
-                   VALE_CALC=50.0, VALE_REFE=50.0, PRECISION=1e-9, REFERENCE="ANALYTIQUE")))
+                   VALE_CALC=@S@, VALE_REFE=@S@, PRECISION=1e-9, REFERENCE="ANALYTIQUE")))
 FIN()
-"#;
-    let (status, mess, _) = run_on_box(&dir, ("QUAD8", "4,2", "2,1"), comm);
+"#
+    .replace("@L@", &format!("{lambda:?}"))
+    .replace("@DT@", &format!("{dt:?}"))
+    .replace("@S@", &format!("{sour:?}"));
+    let (status, mess, _) = run_on_box(&dir, ("QUAD8", "4,2", "2,1"), &comm);
     assert!(status.success(), "{mess}");
     assert_eq!(mess.lines().filter(|l| l.trim_start().starts_with("OK  ANALYTIQUE")).count(), 2, "{mess}");
     let _ = std::fs::remove_dir_all(&dir);
