@@ -109,6 +109,7 @@ pub enum ConceptData {
     Result(result::ResultData),
     Crack(Rc<crate::xfem::Crack>),
     Contact(model::Contact),
+    CaraElem(model::CaraElem),
     Field(result::FieldData),
 }
 
@@ -222,6 +223,12 @@ impl Concept {
     pub fn model(&self) -> Result<Ref<'_, model::Model>> {
         Ref::filter_map(self.data(), |d| if let ConceptData::Model(m) = d { Some(m) } else { None })
             .map_err(|_| self.holds_no("model"))
+    }
+
+    /// The element characteristics behind a `cara_elem`.
+    pub fn cara_elem(&self) -> Result<Ref<'_, model::CaraElem>> {
+        Ref::filter_map(self.data(), |d| if let ConceptData::CaraElem(c) = d { Some(c) } else { None })
+            .map_err(|_| self.holds_no("element characteristics"))
     }
 
     /// The result behind an `evol_*`.

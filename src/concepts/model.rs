@@ -372,3 +372,18 @@ impl HeatItem {
         }
     }
 }
+
+/// AFFE_CARA_ELEM: what it gives the cells of a model. So far the local frames of MASSIF (the axes of
+/// anisotropic materials), per cell of the mesh (None: the global frame).
+#[derive(Debug)]
+pub struct CaraElem {
+    pub model: ConceptRef,
+    pub massif: Vec<Option<crate::fem::frame::Frame>>,
+}
+
+impl CaraElem {
+    /// The frame of a cell's material.
+    pub fn frame(&self, cell: usize) -> crate::fem::frame::Frame {
+        self.massif.get(cell).copied().flatten().unwrap_or(crate::fem::frame::Frame::GLOBAL)
+    }
+}

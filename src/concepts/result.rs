@@ -29,6 +29,8 @@ pub struct Step {
 pub struct ResultData {
     pub model: ConceptRef,
     pub material: Option<ConceptRef>,
+    /// The element characteristics it was computed with (AFFE_CARA_ELEM).
+    pub cara_elem: Option<ConceptRef>,
     pub loads: Vec<ConceptRef>,
     pub steps: Vec<Step>,
 }

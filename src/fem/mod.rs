@@ -8,6 +8,7 @@ pub mod dofs;
 pub mod elastic;
 pub mod elasticity;
 pub mod field;
+pub mod frame;
 pub mod geometry;
 pub mod physics;
 pub mod postpro;

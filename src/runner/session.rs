@@ -147,6 +147,8 @@ impl Session {
         // return the object they modify (wtnv122d: `MAILLAGE = MODI_MAILLAGE(reuse=MAIL, MAILLAGE=MAIL, ...)`).
         let kind = match &produced {
             Produced::Kind(k) => Some(*k),
+            // A generated schema whose only possible type is chosen by a rule (AFFE_CARA_ELEM).
+            Produced::OneOf(ks) if ks.len() == 1 => Some(ks[0]),
             _ => None,
         };
         if let (Some(r), Some(k)) = (&validated.reuse, kind) {

@@ -1,9 +1,11 @@
-//! DEFI_MATERIAU and AFFE_MATERIAU: materials and the material field.
+//! DEFI_MATERIAU and AFFE_MATERIAU: materials and the material field; AFFE_CARA_ELEM: the element
+//! characteristics (the local frames of anisotropic materials).
 
 use crate::catalog::args::{ArgValue, Args, Val};
-use crate::concepts::model::{MatValue, Material, MaterialField, Varc, VarcSource};
+use crate::concepts::model::{CaraElem, MatValue, Material, MaterialField, Varc, VarcSource};
 use crate::concepts::ConceptData;
 use crate::diag::Result;
+use crate::fem::frame::Frame;
 use crate::stages::select::select_cells;
 use crate::stages::Ctx;
 use std::collections::BTreeMap;
@@ -112,4 +114,68 @@ fn affe_varc(mesh: &crate::mesh::Mesh, occ: &Args, name: &str) -> Result<Varc> {
         vale_ref: occ.real("VALE_REF"),
         prol: (prol("PROL_GAUCHE"), prol("PROL_DROITE")),
     })
+}
+
+// ------------------------------------------------------------------ AFFE_CARA_ELEM
+
+/// AFFE_CARA_ELEM: the characteristics a model's cells need beyond their material. So far MASSIF, the
+/// local frame of an anisotropic material (`THER_ORTH`, `THER_NL_ORTH`, ...): nautical angles
+/// (ANGL_REP), Euler angles (ANGL_EULER) or a cylindrical frame (ORIG_AXE, with ANGL_AXE in 3D). The
+/// structural elements' keywords (POUTRE, BARRE, COQUE, DISCRET, ...) stop the run by name.
+///
+/// As Code_Aster does: the cells MASSIF leaves out keep the global frame, later occurrences overwrite
+/// earlier ones on the cells they share, and a cell of a plane modelisation takes the first nautical
+/// angle only (its frame turns in the plane).
+pub fn affe_cara_elem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
+    let mo = a.req_concept("MODELE")?;
+    let _ = (a.int("INFO"), a.texts("VERIF"));
+    let (mesh, elements) = {
+        let m = mo.model()?;
+        (m.current_mesh(), m.elements.iter().map(|e| e.as_ref().map(|e| e.modelisation.dim())).collect::<Vec<_>>())
+    };
+    let name = mo.model()?.mesh_concept.label();
+    let mut massif = vec![None; mesh.cells.len()];
+    for occ in a.facts("MASSIF") {
+        if occ.has("CHAM_ORIE") {
+            return Err(occ.err("CHAM_ORIE", "a field of orientations (CHAM_ORIE) is not supported yet"));
+        }
+        let rep = occ.reals("ANGL_REP");
+        let eul = occ.reals("ANGL_EULER");
+        let axe = occ.reals("ANGL_AXE");
+        let orig = occ.reals("ORIG_AXE");
+        let cells = select_cells(&mesh, occ, &name)?;
+        for c in cells {
+            // The dimension of the cell's element (the mesh's for a cell the model leaves out).
+            let dim = elements.get(c).copied().flatten().unwrap_or(mesh.dim);
+            let frame = if !rep.is_empty() {
+                Frame::nautical(if dim == 2 { &rep[..1] } else { &rep })
+            } else if !eul.is_empty() {
+                let f = Frame::euler(&eul);
+                match (dim, f) {
+                    // In the plane only the angle of L about Z counts.
+                    (2, Frame::Fixed(ax)) => Frame::nautical(&[ax[0][1].atan2(ax[0][0]).to_degrees()]),
+                    _ => f,
+                }
+            } else if !orig.is_empty() {
+                let mut o = [0.0; 3];
+                o.iter_mut().zip(&orig).for_each(|(d, v)| *d = *v);
+                match (dim, axe.as_slice()) {
+                    (3, [a, b]) => Frame::cylinder(o, Some([*a, *b])),
+                    (3, _) => {
+                        return Err(occ.err("ORIG_AXE", "in 3D a cylindrical frame needs its axis (ANGL_AXE)"));
+                    }
+                    (_, []) => Frame::cylinder(o, None),
+                    _ => {
+                        return Err(
+                            occ.err("ANGL_AXE", "in 2D a cylindrical frame has no axis: ANGL_AXE is not allowed")
+                        )
+                    }
+                }
+            } else {
+                return Err(occ.err("ANGL_REP", "ANGL_REP, ANGL_EULER or ORIG_AXE is required"));
+            };
+            massif[c] = Some(frame);
+        }
+    }
+    Ok(Some(ConceptData::CaraElem(CaraElem { model: mo.clone(), massif })))
 }

@@ -179,6 +179,7 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "AFFE_MODELE" => model::affe_modele,
         "DEFI_MATERIAU" => material::defi_materiau,
         "AFFE_MATERIAU" => material::affe_materiau,
+        "AFFE_CARA_ELEM" => material::affe_cara_elem,
         "AFFE_CHAR_MECA" => loads::affe_char_meca,
         "AFFE_CHAR_MECA_F" => loads::affe_char_meca_f,
         "AFFE_CHAR_CINE" => loads::affe_char_cine,

@@ -16,6 +16,7 @@
 //! - the flux `q = −Λ(T) ∇T` at the `RIGI` points, extrapolated to the nodes as every `*_ELNO` field.
 
 use crate::fem::elasticity::{gauss_geometry, gauss_to_node_matrix, ElementError, GaussGeom};
+use crate::fem::frame::{principal_tensor, Frame};
 use crate::fem::quadrature::{aster_rule, QuadratureRule};
 use crate::mesh::CellType;
 use std::fmt;
@@ -201,31 +202,29 @@ impl From<OutOfRange> for ThermalError {
     }
 }
 
-/// A conductivity: isotropic, or orthotropic along local axes (`THER_ORTH`: `λ_L λ_T [λ_N]`, the
-/// axes' global components as rows; in 2D the first two, in the plane).
+/// A conductivity: isotropic, or orthotropic along the axes of a local frame (`THER_ORTH`,
+/// `THER_NL_ORTH`: `λ_L λ_T [λ_N]`; in 2D the first two, in the plane), which may turn with the point
+/// (a cylindrical frame).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Conductivity {
     Iso(f64),
-    Ortho { lambda: [f64; 3], axes: [[f64; 3]; 3] },
+    Ortho { lambda: [f64; 3], frame: Frame },
 }
 
 impl Conductivity {
-    /// The tensor `Λ` in global axes.
-    pub fn tensor(&self, dim: usize) -> [[f64; 3]; 3] {
-        let mut k = [[0.0; 3]; 3];
+    /// The tensor `Λ` in global axes at the point `x`.
+    pub fn tensor(&self, dim: usize, x: &[f64; 3]) -> Result<[[f64; 3]; 3], ThermalError> {
         match *self {
-            Conductivity::Iso(l) => (0..dim).for_each(|i| k[i][i] = l),
-            Conductivity::Ortho { lambda, axes } => {
-                for (l, a) in lambda.iter().zip(&axes).take(dim) {
-                    for i in 0..dim {
-                        for j in 0..dim {
-                            k[i][j] += l * a[i] * a[j];
-                        }
-                    }
-                }
+            Conductivity::Iso(l) => {
+                let mut k = [[0.0; 3]; 3];
+                (0..dim).for_each(|i| k[i][i] = l);
+                Ok(k)
+            }
+            Conductivity::Ortho { lambda, frame } => {
+                let axes = frame.axes_at(x).map_err(|e| ThermalError::Material(e.to_string()))?;
+                Ok(principal_tensor(&lambda, &axes, dim))
             }
         }
-        k
     }
 }
 
@@ -258,9 +257,9 @@ pub fn conduction(
 ) -> Result<Vec<f64>, ThermalError> {
     let pts = m.points(t, coords, &m.rigi_rule(t))?;
     let (n, dim) = (t.nnodes(), m.dim());
-    let kt = k.tensor(dim);
     let mut out = vec![0.0; n * n];
     for p in &pts {
+        let kt = k.tensor(dim, &p.x)?;
         for a in 0..n {
             let ka = apply(&kt, &p.dn[a], dim);
             for b in 0..n {
@@ -305,7 +304,7 @@ pub fn conduction_nl(
     for p in &pts {
         let (tp, grad) = value_and_gradient(p, temps, dim);
         let (k, dk) = law(tp)?;
-        let (kt, dkt) = (k.tensor(dim), dk.tensor(dim));
+        let (kt, dkt) = (k.tensor(dim, &p.x)?, dk.tensor(dim, &p.x)?);
         let flux = apply(&kt, &grad, dim);
         let dflux = apply(&dkt, &grad, dim);
         for a in 0..n {
@@ -395,10 +394,34 @@ pub fn flux(
     let mut out = Vec::with_capacity(pts.len());
     for p in &pts {
         let (tp, grad) = value_and_gradient(p, temps, dim);
-        let q = apply(&law(tp)?.tensor(dim), &grad, dim);
+        let q = apply(&law(tp)?.tensor(dim, &p.x)?, &grad, dim);
         out.push((p.x, [-q[0], -q[1], -q[2]]));
     }
     Ok(out)
+}
+
+/// The thermal energy of a cell, `−½ ∫ ∇T · Λ ∇T` on the `RIGI` points (`ETHE_ELEM`), as Code_Aster's
+/// te0066 (3D: the frame at each point) and te0220 (in the plane: the plane area without the radius of
+/// `AXIS`, the frame at the nodes' centre).
+pub fn energy(
+    m: Modelisation,
+    t: CellType,
+    coords: &[[f64; 3]],
+    temps: &[f64],
+    k: &Conductivity,
+) -> Result<f64, ThermalError> {
+    let plane = Modelisation { kinematics: if m.dim() == 2 { Kinematics::Plan } else { m.kinematics }, ..m };
+    let pts = plane.points(t, coords, &m.rigi_rule(t))?;
+    let dim = m.dim();
+    let centre: [f64; 3] = std::array::from_fn(|i| coords.iter().map(|x| x[i]).sum::<f64>() / coords.len() as f64);
+    let mut e = 0.0;
+    for p in &pts {
+        let (_, grad) = value_and_gradient(p, temps, dim);
+        let kt = k.tensor(dim, if dim == 2 { &centre } else { &p.x })?;
+        let q = apply(&kt, &grad, dim);
+        e -= p.w * (0..dim).map(|i| grad[i] * q[i]).sum::<f64>();
+    }
+    Ok(e / 2.0)
 }
 
 /// Values at the `RIGI` points of a cell extrapolated to its nodes (`FLUX_ELNO` from `FLUX_ELGA`).
@@ -482,8 +505,10 @@ mod tests {
     #[test]
     fn linear_temperatures_are_exact_on_every_cell() {
         let g = [0.7, -1.1, 0.4];
-        let ortho =
-            Conductivity::Ortho { lambda: [2.0, 0.5, 1.5], axes: [[0.6, 0.8, 0.0], [-0.8, 0.6, 0.0], [0.0, 0.0, 1.0]] };
+        let ortho = Conductivity::Ortho {
+            lambda: [2.0, 0.5, 1.5],
+            frame: Frame::Fixed([[0.6, 0.8, 0.0], [-0.8, 0.6, 0.0], [0.0, 0.0, 1.0]]),
+        };
         for (m, t) in cases() {
             let x = distorted(t);
             let dim = m.dim();
@@ -494,7 +519,7 @@ mod tests {
                 let ones = matvec(&km, &vec![1.0; n]);
                 assert!(ones.iter().all(|v| v.abs() < 1e-10), "{m} {t:?}: K 1 = {ones:?}");
                 // The flux is exact at every point.
-                let kt = k.tensor(dim);
+                let kt = k.tensor(dim, &[0.0; 3]).unwrap();
                 let q = flux(m, t, &x, &temps, &|_| Ok(k)).unwrap();
                 let exact = apply(&kt, &g, dim);
                 for (_, qp) in &q {

@@ -20,6 +20,7 @@ use crate::diag::Error;
 use crate::fem::assembly::{Assembler, ElementDofs};
 use crate::fem::dofs::DofNumbering;
 use crate::fem::field::Field;
+use crate::fem::frame::Frame;
 use crate::fem::physics::{Failure, Force, Load, Physics, Prediction, Residual, StepInfo, Value};
 use crate::mesh::Mesh;
 use std::borrow::Cow;
@@ -42,22 +43,73 @@ impl Param {
     }
 }
 
+/// A conductivity law: one value (isotropic), or three along the axes of a local frame (orthotropic,
+/// `THER_ORTH`, `THER_NL_ORTH`: `λ_L λ_T λ_N`).
+#[derive(Clone)]
+pub enum Lambda<P> {
+    Iso(P),
+    Ortho([P; 3], Frame),
+}
+
+impl Lambda<Param> {
+    /// The conductivity at a time.
+    pub fn at(&self, inst: f64) -> Result<Conductivity, Error> {
+        Ok(match self {
+            Lambda::Iso(l) => Conductivity::Iso(l.at(inst)?),
+            Lambda::Ortho(l, frame) => {
+                Conductivity::Ortho { lambda: [l[0].at(inst)?, l[1].at(inst)?, l[2].at(inst)?], frame: *frame }
+            }
+        })
+    }
+
+    /// The conductivity when it does not depend on the time.
+    fn constant(&self) -> Option<Conductivity> {
+        match self {
+            Lambda::Iso(Param::Real(l)) => Some(Conductivity::Iso(*l)),
+            Lambda::Ortho([Param::Real(a), Param::Real(b), Param::Real(c)], frame) => {
+                Some(Conductivity::Ortho { lambda: [*a, *b, *c], frame: *frame })
+            }
+            _ => None,
+        }
+    }
+}
+
+impl Lambda<Curve> {
+    /// The conductivity at a temperature and its derivative in the temperature.
+    pub fn eval(&self, temp: f64) -> Result<(Conductivity, Conductivity), super::curve::OutOfRange> {
+        Ok(match self {
+            Lambda::Iso(l) => {
+                let (v, d) = l.eval(temp)?;
+                (Conductivity::Iso(v), Conductivity::Iso(d))
+            }
+            Lambda::Ortho(l, frame) => {
+                let (a, b, c) = (l[0].eval(temp)?, l[1].eval(temp)?, l[2].eval(temp)?);
+                (
+                    Conductivity::Ortho { lambda: [a.0, b.0, c.0], frame: *frame },
+                    Conductivity::Ortho { lambda: [a.1, b.1, c.1], frame: *frame },
+                )
+            }
+        })
+    }
+}
+
 /// The heat law of a bulk cell.
 #[derive(Clone)]
 pub enum Law {
-    /// `THER`, `THER_FO`: conductivity and volumetric heat capacity (None: steady computations only).
-    Linear { lambda: Param, rho_cp: Option<Param> },
-    /// `THER_NL`: conductivity and enthalpy as tabulated functions of the temperature.
-    Nonlinear { lambda: Curve, beta: Curve },
+    /// `THER`, `THER_FO`, `THER_ORTH`: conductivity and volumetric heat capacity (None: steady
+    /// computations only).
+    Linear { lambda: Lambda<Param>, rho_cp: Option<Param> },
+    /// `THER_NL`, `THER_NL_ORTH`: conductivity and enthalpy as tabulated functions of the temperature.
+    Nonlinear { lambda: Lambda<Curve>, beta: Curve },
 }
 
 impl Law {
     /// The conductivity at a time and a temperature.
     pub fn conductivity(&self, inst: f64, temp: f64) -> Result<Conductivity, Error> {
         match self {
-            Law::Linear { lambda, .. } => Ok(Conductivity::Iso(lambda.at(inst)?)),
+            Law::Linear { lambda, .. } => lambda.at(inst),
             Law::Nonlinear { lambda, .. } => {
-                Ok(Conductivity::Iso(lambda.eval(temp).map_err(|e| Error::runtime(format!("THER_NL/LAMBDA: {e}")))?.0))
+                Ok(lambda.eval(temp).map_err(|e| Error::runtime(format!("THER_NL/LAMBDA: {e}")))?.0)
             }
         }
     }
@@ -172,9 +224,10 @@ impl Thermal {
         }
         let mut constant = vec![None; mesh.cells.len()];
         for &c in &bulk {
-            let Law::Linear { lambda: Param::Real(l), rho_cp } = &**laws[c].as_ref().expect("checked above") else {
+            let Law::Linear { lambda, rho_cp } = &**laws[c].as_ref().expect("checked above") else {
                 continue;
             };
+            let Some(l) = lambda.constant() else { continue };
             let rho_cp = match rho_cp {
                 Some(Param::Real(r)) => Some(*r),
                 None => None,
@@ -183,7 +236,7 @@ impl Thermal {
             let (md, _) = elements[c].expect("a bulk cell has its element");
             let x: Vec<[f64; 3]> = mesh.cells[c].iter().map(|&n| mesh.coords[n]).collect();
             let t = mesh.cell_types[c];
-            let k = conduction(md, t, &x, &Conductivity::Iso(*l)).map_err(cell_err(&mesh, c))?;
+            let k = conduction(md, t, &x, &l).map_err(cell_err(&mesh, c))?;
             // The capacity of a steady computation is never asked for (and may be missing).
             let m = match (theta, rho_cp) {
                 (Some(_), Some(r)) => Some(capacity(md, t, &x, r).map_err(cell_err(&mesh, c))?),
@@ -276,7 +329,7 @@ impl Thermal {
         let law = self.laws[c].as_ref().expect("a bulk cell has its law");
         match &**law {
             Law::Linear { lambda, rho_cp } => {
-                let k = conduction(md, ct, &x, &Conductivity::Iso(lambda.at(t)?)).map_err(cell_err(mesh, c))?;
+                let k = conduction(md, ct, &x, &lambda.at(t)?).map_err(cell_err(mesh, c))?;
                 let cap = if with_capacity {
                     let rc = rho_cp.as_ref().ok_or_else(|| {
                         Error::runtime(format!(
@@ -293,11 +346,7 @@ impl Thermal {
                 Ok(((matvec(&k, &te), Cow::Owned(k)), cap))
             }
             Law::Nonlinear { lambda, beta } => {
-                let k = conduction_nl(md, ct, &x, &te, &|tp| {
-                    let (l, dl) = lambda.eval(tp)?;
-                    Ok((Conductivity::Iso(l), Conductivity::Iso(dl)))
-                })
-                .map_err(cell_err(mesh, c))?;
+                let k = conduction_nl(md, ct, &x, &te, &|tp| Ok(lambda.eval(tp)?)).map_err(cell_err(mesh, c))?;
                 let cap = if with_capacity {
                     let (v, m) = enthalpy_nl(md, ct, &x, &te, &|tp| Ok(beta.eval(tp)?)).map_err(cell_err(mesh, c))?;
                     Some((v, Cow::Owned(m)))
@@ -521,9 +570,9 @@ impl Thermal {
         for &c in &self.bulk {
             let (md, _) = self.elements[c].expect("a bulk cell has its element");
             let law = self.laws[c].as_ref().expect("a bulk cell has its law");
-            let Law::Linear { lambda, .. } = &**law else {
+            let Law::Linear { lambda: Lambda::Iso(lambda), .. } = &**law else {
                 return Err(Error::runtime(format!(
-                    "cell {}: SOUR_ELGA takes a THER material (LAMBDA), not THER_NL",
+                    "cell {}: SOUR_ELGA takes a THER material (LAMBDA), not THER_NL or an orthotropic one",
                     mesh.cell_names[c]
                 )));
             };
@@ -537,6 +586,27 @@ impl Thermal {
             cells[c] = Some(vec![norm2 / l; q.len()]);
         }
         Ok(Field::Elga { components: vec!["SOUR".into()], cells })
+    }
+
+    /// The thermal energy of every bulk cell (`ETHE_ELEM`, component `TOTALE`), the law at `inst`. Linear
+    /// laws only (`THER`, `THER_FO`, `THER_ORTH`), as Code_Aster's.
+    pub fn energy(&self, temps: &[f64], inst: f64) -> Result<Field, Error> {
+        let mesh = &*self.mesh;
+        let mut cells = vec![None; mesh.cells.len()];
+        for &c in &self.bulk {
+            let (md, _) = self.elements[c].expect("a bulk cell has its element");
+            let Law::Linear { lambda, .. } = &**self.laws[c].as_ref().expect("a bulk cell has its law") else {
+                return Err(Error::runtime(format!(
+                    "cell {}: ETHE_ELEM takes a THER or THER_ORTH material, not THER_NL",
+                    mesh.cell_names[c]
+                )));
+            };
+            let e =
+                element::energy(md, mesh.cell_types[c], &self.coords(c), &self.cell_temps(c, temps), &lambda.at(inst)?)
+                    .map_err(cell_err(mesh, c))?;
+            cells[c] = Some(vec![e]);
+        }
+        Ok(Field::Elem { components: vec!["TOTALE".into()], cells })
     }
 
     /// The temperature at the integration points of every bulk cell (`TEMP_ELGA`).
@@ -764,7 +834,7 @@ mod tests {
         let ncells = mesh.cells.len();
         let mut elements = vec![Some((plan(), true)); ncells];
         elements[ncells - 1] = Some((plan(), false));
-        let law = Rc::new(Law::Linear { lambda: Param::Real(2.0), rho_cp: Some(Param::Real(3.0)) });
+        let law = Rc::new(Law::Linear { lambda: Lambda::Iso(Param::Real(2.0)), rho_cp: Some(Param::Real(3.0)) });
         let mut laws = vec![Some(law); ncells];
         laws[ncells - 1] = None;
         (Thermal::new(mesh, elements, laws, theta, true, &[]).expect("a problem"), left, right)

@@ -184,6 +184,7 @@ fn calc_champ() -> Command {
             kws![
                 simp("MODELE").co(&[ConceptKind::Modele]),
                 simp("CHAM_MATER").co(&[ConceptKind::ChamMater]),
+                simp("CARA_ELEM").co(&[ConceptKind::CaraElem]),
                 simp("RESULTAT").co(RESULTS).o(),
                 simp("TOUT_ORDRE").txt().one_of(&["OUI"]),
                 simp("NUME_ORDRE").i().many(),

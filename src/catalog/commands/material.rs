@@ -5,7 +5,7 @@ use crate::concepts::ConceptKind;
 use crate::kws;
 
 pub fn commands() -> Vec<Command> {
-    vec![defi_materiau(), affe_materiau()]
+    vec![defi_materiau(), affe_materiau(), affe_cara_elem()]
 }
 
 /// A function of one or more parameters.
@@ -618,6 +618,38 @@ fn defi_materiau() -> Command {
             exclus(&["LEMAITRE", "LEMAITRE_FO"]),
             present_present("DRUCK_PRAGER", &["ELAS"]),
             au_moins_un(BEHAVIOURS),
+        ])
+}
+
+/// AFFE_CARA_ELEM as far as its stage goes: MASSIF, the local frames of anisotropic materials. The
+/// structural elements' keywords (POUTRE, COQUE, DISCRET, ...) are valid Code_Aster that stops by name.
+fn affe_cara_elem() -> Command {
+    Command::new("AFFE_CARA_ELEM", "Assign element characteristics: the local frames of anisotropic materials.")
+        .produces(ConceptKind::CaraElem)
+        .kw(kws![
+            simp("MODELE").co(&[ConceptKind::Modele]).o(),
+            simp("INFO").i().d(1).one_of_i(&[1, 2]),
+            simp("VERIF").txt().many().one_of(&["MAILLE"]),
+            fact(
+                "MASSIF",
+                kws![
+                    simp("GROUP_MA").txt().many(),
+                    simp("TOUT").txt().one_of(&["OUI"]),
+                    simp("CHAM_ORIE").co(&[ConceptKind::ChamNo, ConceptKind::Carte]),
+                    simp("ANGL_REP").r().min(1).max(3),
+                    simp("ANGL_EULER").r().min(1).max(3),
+                    simp("ANGL_AXE").r().min(2).max(2),
+                    simp("ORIG_AXE").r().min(2).max(3),
+                ]
+            )
+            .o()
+            .many()
+            .rules(vec![
+                un_parmi(&["GROUP_MA", "TOUT"]),
+                un_parmi(&["ANGL_REP", "ORIG_AXE", "ANGL_EULER", "CHAM_ORIE"]),
+                present_present("ANGL_AXE", &["ORIG_AXE"]),
+                ensemble(&["TOUT", "CHAM_ORIE"]),
+            ]),
         ])
 }
 

@@ -10,8 +10,9 @@ use crate::concepts::model::HeatItem;
 use crate::concepts::model::{MatValue, Material, MaterialField, Role};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
+use crate::fem::frame::Frame;
 use crate::fem::physics::OfTemperature;
-use crate::thermal::physics::{Law, Param, Thermal};
+use crate::thermal::physics::{Lambda, Law, Param, Thermal};
 use crate::thermal::{Curve, Extension};
 use std::rc::Rc;
 
@@ -86,12 +87,54 @@ fn param(m: &Material, beh: &str, p: &str) -> Option<Param> {
     }
 }
 
-/// The heat law of a material; `cell` names it in messages.
-pub fn heat_law(m: &Material, cell: &str) -> Result<Law> {
+/// The heat law of a material; `cell` names it in messages, `frame` is its local frame (AFFE_CARA_ELEM
+/// MASSIF: None without CARA_ELEM), `dim` the dimension of its element.
+pub fn heat_law(m: &Material, cell: &str, frame: Option<Frame>, dim: usize) -> Result<Law> {
     let has = |b: &str| m.behaviours.contains_key(b);
     if let Some(b) = ["THER", "THER_FO"].into_iter().find(|b| has(b)) {
         let lambda = param(m, b, "LAMBDA").ok_or_else(|| Error::runtime(format!("cell {cell}: {b} without LAMBDA")))?;
-        return Ok(Law::Linear { lambda, rho_cp: param(m, b, "RHO_CP") });
+        return Ok(Law::Linear { lambda: Lambda::Iso(lambda), rho_cp: param(m, b, "RHO_CP") });
+    }
+    if let Some(b) = ["THER_ORTH", "THER_NL_ORTH"].into_iter().find(|b| has(b)) {
+        let frame = frame.ok_or_else(|| {
+            Error::runtime(format!(
+                "cell {cell}: {b} needs the local axes of its material: give CARA_ELEM (AFFE_CARA_ELEM MASSIF)"
+            ))
+        })?;
+        // In the plane λ_N is not used (and may be absent).
+        let names = ["LAMBDA_L", "LAMBDA_T", "LAMBDA_N"];
+        let missing = |p: &str| Error::runtime(format!("cell {cell}: {b} without {p}"));
+        if b == "THER_ORTH" {
+            let mut l = Vec::new();
+            for (i, p) in names.iter().enumerate() {
+                l.push(match param(m, b, p) {
+                    Some(v) => v,
+                    None if i == 2 && dim == 2 => Param::Real(0.0),
+                    None => return Err(missing(p)),
+                });
+            }
+            let l: [Param; 3] = l.try_into().unwrap_or_else(|_| unreachable!("three conductivities"));
+            return Ok(Law::Linear { lambda: Lambda::Ortho(l, frame), rho_cp: param(m, b, "RHO_CP") });
+        }
+        let func = |p: &str| match m.behaviours[b].get(p) {
+            Some(MatValue::Func(c)) => Some(c.clone()),
+            _ => None,
+        };
+        let mut l = Vec::new();
+        for (i, p) in names.iter().enumerate() {
+            l.push(match func(p) {
+                Some(c) => curve_of(&c, &format!("{b}/{p}"))?,
+                None if i == 2 && dim == 2 => Curve::constant(0.0),
+                None => return Err(missing(p)),
+            });
+        }
+        let l: [Curve; 3] = l.try_into().unwrap_or_else(|_| unreachable!("three conductivities"));
+        let beta = match (func("BETA"), func("RHO_CP")) {
+            (Some(c), _) => curve_of(&c, &format!("{b}/BETA"))?,
+            (None, Some(r)) => Curve::enthalpy(&curve_of(&r, &format!("{b}/RHO_CP"))?),
+            (None, None) => return Err(missing("BETA or RHO_CP")),
+        };
+        return Ok(Law::Nonlinear { lambda: Lambda::Ortho(l, frame), beta });
     }
     if has("THER_NL") {
         let func = |p: &str| match m.behaviours["THER_NL"].get(p) {
@@ -105,12 +148,7 @@ pub fn heat_law(m: &Material, cell: &str) -> Result<Law> {
             (None, Some(r)) => Curve::enthalpy(&curve_of(&r, "THER_NL/RHO_CP")?),
             (None, None) => return Err(Error::runtime(format!("cell {cell}: THER_NL without BETA or RHO_CP"))),
         };
-        return Ok(Law::Nonlinear { lambda, beta });
-    }
-    if let Some(b) = ["THER_ORTH", "THER_NL_ORTH"].into_iter().find(|b| has(b)) {
-        return Err(Error::unsupported(format!(
-            "cell {cell}: {b} needs the local axes of AFFE_CARA_ELEM (MASSIF), which is not supported yet"
-        )));
+        return Ok(Law::Nonlinear { lambda: Lambda::Iso(lambda), beta });
     }
     let others: Vec<&str> = m.behaviours.keys().map(String::as_str).collect();
     Err(Error::runtime(format!(
@@ -124,6 +162,7 @@ pub fn heat_law(m: &Material, cell: &str) -> Result<Law> {
 pub fn thermal_problem(
     model: &ConceptRef,
     chmat: &ConceptRef,
+    cara: Option<&ConceptRef>,
     theta: Option<f64>,
     linear: bool,
     couples: &[Vec<usize>],
@@ -151,7 +190,13 @@ pub fn thermal_problem(
         return Err(Error::runtime(format!("{} holds no material field", chmat.label())));
     };
     let mut laws = vec![None; mesh.cells.len()];
-    let mut cache: Vec<(*const crate::concepts::Concept, Rc<Law>)> = Vec::new();
+    let cara = match cara {
+        Some(c) => Some(c.cara_elem().map_err(|e| e.at_keyword("CARA_ELEM"))?),
+        None => None,
+    };
+    // One law per material and frame.
+    type Key = (*const crate::concepts::Concept, Option<Frame>);
+    let mut cache: Vec<(Key, Rc<Law>)> = Vec::new();
     for (c, e) in elements.iter().enumerate() {
         if !e.is_some_and(|(_, bulk)| bulk) {
             continue;
@@ -163,13 +208,16 @@ pub fn thermal_problem(
             ))
             .at_keyword("CHAM_MATER"));
         };
-        let key = Rc::as_ptr(mc);
+        let frame = cara.as_ref().map(|ca| ca.frame(c));
+        let key = (Rc::as_ptr(mc), frame);
         let law = match cache.iter().find(|(k, _)| *k == key) {
             Some((_, l)) => l.clone(),
             None => {
                 let md = mc.data();
                 let ConceptData::Material(mat) = &*md else { unreachable!("AFFE_MATERIAU holds materials") };
-                let l = Rc::new(heat_law(mat, &mesh.cell_names[c]).map_err(|e| e.at_keyword("CHAM_MATER"))?);
+                let dim = e.map(|(m, _)| m.dim()).unwrap_or(mesh.dim);
+                let l =
+                    Rc::new(heat_law(mat, &mesh.cell_names[c], frame, dim).map_err(|e| e.at_keyword("CHAM_MATER"))?);
                 cache.push((key, l.clone()));
                 l
             }

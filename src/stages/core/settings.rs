@@ -153,6 +153,8 @@ pub struct Settings {
     sites: BTreeMap<String, Span>,
     pub model: ConceptRef,
     pub chmat: Option<ConceptRef>,
+    /// CARA_ELEM: the element characteristics (the local frames of anisotropic materials).
+    pub cara_elem: Option<ConceptRef>,
     pub excit: Vec<Excit>,
     /// The instants, the initial one first (MECA_STATIQUE: INST twice).
     pub times: Vec<f64>,
@@ -307,6 +309,7 @@ impl Settings {
             sites,
             model,
             chmat,
+            cara_elem: None,
             excit,
             times,
             subdivision,

@@ -155,6 +155,7 @@ fn nothing_computed(ctx: &mut Ctx, rc: &ConceptRef, what: &str, steps: Vec<Step>
     Ok(ConceptData::Result(ResultData {
         model: r.model.clone(),
         material: r.material.clone(),
+        cara_elem: r.cara_elem.clone(),
         loads: r.loads.clone(),
         steps,
     }))
@@ -252,7 +253,13 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             ));
         }
         let r = rc.result()?;
-        let data = ResultData { model: r.model.clone(), material: r.material.clone(), loads: r.loads.clone(), steps };
+        let data = ResultData {
+            model: r.model.clone(),
+            material: r.material.clone(),
+            cara_elem: r.cara_elem.clone(),
+            loads: r.loads.clone(),
+            steps,
+        };
         return Ok(Some(ConceptData::Result(data)));
     }
     let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
@@ -326,7 +333,13 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         }
     }
     let r = rc.result()?;
-    let data = ResultData { model: r.model.clone(), material: r.material.clone(), loads: r.loads.clone(), steps };
+    let data = ResultData {
+        model: r.model.clone(),
+        material: r.material.clone(),
+        cara_elem: r.cara_elem.clone(),
+        loads: r.loads.clone(),
+        steps,
+    };
     Ok(Some(ConceptData::Result(data)))
 }
 

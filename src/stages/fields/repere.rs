@@ -171,9 +171,9 @@ pub fn modi_repere(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         return Err(a.err("REPERE", format!("REPERE='{repere}' is not supported yet (UTILISATEUR, CYLINDRIQUE are)")));
     }
     let rc = a.req_concept("RESULTAT")?;
-    let (model, material, loads, steps) = {
+    let (model, material, cara_elem, loads, steps) = {
         let r = rc.result().map_err(|e| a.err("RESULTAT", e.msg))?;
-        (r.model.clone(), r.material.clone(), r.loads.clone(), r.steps.clone())
+        (r.model.clone(), r.material.clone(), r.cara_elem.clone(), r.loads.clone(), r.steps.clone())
     };
     let (mesh, mesh_name) = {
         let m = model.model().map_err(|e| a.err("RESULTAT", e.msg))?;
@@ -378,7 +378,7 @@ pub fn modi_repere(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     if !text.is_empty() {
         ctx.io.mess(&text);
     }
-    Ok(Some(ConceptData::Result(ResultData { model, material, loads, steps: chosen })))
+    Ok(Some(ConceptData::Result(ResultData { model, material, cara_elem, loads, steps: chosen })))
 }
 
 #[cfg(test)]

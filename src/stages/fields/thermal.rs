@@ -1,7 +1,7 @@
 //! CALC_CHAMP on thermal results (THERMIQUE): the flux `−Λ∇T` at the integration points (`FLUX_ELGA`),
 //! extrapolated to the nodes of each cell (`FLUX_ELNO`) and averaged over the cells at each node
 //! (`FLUX_NOEU`); the temperature at the integration points (`TEMP_ELGA`); the Joule heat of a potential
-//! computed as a temperature (`SOUR_ELGA`). The laws are taken at each
+//! computed as a temperature (`SOUR_ELGA`); the thermal energy of each cell (`ETHE_ELEM`). The laws are taken at each
 //! step's instant and at the points' temperatures.
 
 use crate::catalog::args::Args;
@@ -11,7 +11,7 @@ use crate::diag::Result;
 use crate::stages::core::heat::thermal_problem;
 
 /// The options computed on thermal results.
-pub const OPTIONS: &[&str] = &["FLUX_ELGA", "FLUX_ELNO", "FLUX_NOEU", "TEMP_ELGA", "SOUR_ELGA"];
+pub const OPTIONS: &[&str] = &["FLUX_ELGA", "FLUX_ELNO", "FLUX_NOEU", "TEMP_ELGA", "SOUR_ELGA", "ETHE_ELEM"];
 
 pub fn calc_champ_ther(
     a: &Args,
@@ -45,7 +45,12 @@ pub fn calc_champ_ther(
         }
         wanted.push(o);
     }
-    let heat = thermal_problem(model, chmat, None, true, &[]).map_err(|e| e.at(a.span))?;
+    // The element characteristics given, else those the result was computed with.
+    let cara = match a.concept("CARA_ELEM") {
+        Some(c) => Some(c),
+        None => rc.result()?.cara_elem.clone(),
+    };
+    let heat = thermal_problem(model, chmat, cara.as_ref(), None, true, &[]).map_err(|e| e.at(a.span))?;
     // The steps NUME_ORDRE / LIST_ORDRE / INST / LIST_INST select (every one when empty).
     for step in steps.iter_mut() {
         if !orders.is_empty() && !orders.contains(&step.nume_ordre) {
@@ -56,25 +61,36 @@ pub fn calc_champ_ther(
             .get("TEMP")
             .ok_or_else(|| a.err("RESULTAT", format!("no TEMP at order {}", step.nume_ordre)))?;
         let temps = heat.temps_of(temp, &rc.label()).map_err(|e| e.at(a.span))?;
-        let (elga, elno) = heat.flux_fields(&temps, step.inst).map_err(|e| e.at(a.span))?;
+        let fluxes = if wanted.iter().any(|o| o.starts_with("FLUX")) {
+            Some(heat.flux_fields(&temps, step.inst).map_err(|e| e.at(a.span))?)
+        } else {
+            None
+        };
         for o in &wanted {
-            let f = match o.as_str() {
-                "FLUX_ELGA" => elga.clone(),
-                "FLUX_ELNO" => elno.clone(),
-                "FLUX_NOEU" => {
-                    let Field::Elno { components, cells } = &elno else { unreachable!("ELNO") };
+            let f = match (o.as_str(), &fluxes) {
+                ("FLUX_ELGA", Some((elga, _))) => elga.clone(),
+                ("FLUX_ELNO", Some((_, elno))) => elno.clone(),
+                ("FLUX_NOEU", Some((_, elno))) => {
+                    let Field::Elno { components, cells } = elno else { unreachable!("ELNO") };
                     Field::Node {
                         components: components.clone(),
                         values: crate::fem::postpro::to_nodes(&heat.mesh, cells, components.len()),
                     }
                 }
-                "SOUR_ELGA" => heat.sour_elga(&temps, step.inst).map_err(|e| e.at(a.span))?,
+                ("SOUR_ELGA", _) => heat.sour_elga(&temps, step.inst).map_err(|e| e.at(a.span))?,
+                ("ETHE_ELEM", _) => heat.energy(&temps, step.inst).map_err(|e| e.at(a.span))?,
                 _ => heat.temp_elga(&temps).map_err(|e| e.at(a.span))?,
             };
             step.fields.insert(o.clone(), f);
         }
     }
     let r = rc.result()?;
-    let data = ResultData { model: r.model.clone(), material: r.material.clone(), loads: r.loads.clone(), steps };
+    let data = ResultData {
+        model: r.model.clone(),
+        material: r.material.clone(),
+        cara_elem: r.cara_elem.clone(),
+        loads: r.loads.clone(),
+        steps,
+    };
     Ok(Some(ConceptData::Result(data)))
 }

@@ -336,7 +336,7 @@ pub fn lire_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         return Err(a.err("FORMAT_MED", format!("no field was read from unit {unit} at the steps asked")));
     }
     drop(model);
-    Ok(Some(ConceptData::Result(ResultData { model: model_c, material, loads, steps })))
+    Ok(Some(ConceptData::Result(ResultData { model: model_c, material, cara_elem: None, loads, steps })))
 }
 
 pub fn lire_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {

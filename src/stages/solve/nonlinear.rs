@@ -52,6 +52,7 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     Ok(Some(ConceptData::Result(ResultData {
         model: cfg.model.clone(),
         material: Some(chmat),
+        cara_elem: cfg.cara_elem.clone(),
         loads: cfg.loads(),
         steps,
     })))

@@ -49,6 +49,7 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     Ok(Some(ConceptData::Result(ResultData {
         model: cfg.model.clone(),
         material: Some(chmat),
+        cara_elem: cfg.cara_elem.clone(),
         loads: cfg.loads(),
         steps,
     })))

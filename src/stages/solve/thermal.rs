@@ -30,8 +30,9 @@ fn run(ctx: &mut Ctx, a: &Args, command: Command) -> Result<Option<ConceptData>>
     let heat = cfg.heat.clone().expect("the thermal commands' settings");
     let chmat = cfg.chmat()?;
     let mesh = cfg.model.model()?.current_mesh();
-    let p = thermal_problem(&cfg.model, &chmat, heat.theta, !heat.nonlinear, &couples(&cfg, &mesh))
-        .map_err(|e| cfg.place(e))?;
+    let p =
+        thermal_problem(&cfg.model, &chmat, cfg.cara_elem.as_ref(), heat.theta, !heat.nonlinear, &couples(&cfg, &mesh))
+            .map_err(|e| cfg.place(e))?;
     if !heat.nonlinear && p.nonlinear() {
         return Err(cfg.err("CHAM_MATER", "a THER_NL material depends on the temperature: THER_NON_LINE computes it"));
     }
@@ -115,6 +116,7 @@ fn run(ctx: &mut Ctx, a: &Args, command: Command) -> Result<Option<ConceptData>>
     Ok(Some(ConceptData::Result(ResultData {
         model: cfg.model.clone(),
         material: Some(chmat),
+        cara_elem: cfg.cara_elem.clone(),
         loads: cfg.loads(),
         steps,
     })))

@@ -561,6 +561,7 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     Ok(Some(ConceptData::Result(crate::concepts::result::ResultData {
         model: visu,
         material,
+        cara_elem: None,
         loads: Vec::new(),
         steps,
     })))

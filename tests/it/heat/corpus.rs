@@ -37,3 +37,22 @@ fn corpus_thermal_modified_newton_matches_code_aster() {
 fn corpus_thermal_cases_pass() {
     run_corpus_cases(&scratch!("corpus"), &CASES);
 }
+
+/// Orthotropic conduction in the local frames of AFFE_CARA_ELEM MASSIF: nautical angles on PLAN, AXIS and
+/// 3D cells (tpla07a: AXIS, with ETHE_ELEM; ttlp303c: a frame at −15°), a cylindrical frame about a 3D
+/// axis (tplv103b: ORIG_AXE + ANGL_AXE), THER_NL_ORTH with λ_L(T), λ_T(T), λ_N(T) (ttnl304b).
+const ORTHOTROPIC: [(&str, usize); 8] = [
+    ("tpla07a", 16),
+    ("tpll100b", 14),
+    ("tplp02a", 58),
+    ("tplv103b", 6),
+    ("ttlp300a", 8),
+    ("ttlp303c", 32),
+    ("ttlp304a", 36),
+    ("ttnl304b", 24),
+];
+
+#[test]
+fn corpus_orthotropic_cases_pass() {
+    run_corpus_cases(&scratch!("corpus_ortho"), &ORTHOTROPIC);
+}

@@ -5,4 +5,5 @@
 mod analytic;
 mod corpus;
 mod loads;
+mod orthotropic;
 mod thermo_mech;

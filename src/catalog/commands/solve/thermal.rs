@@ -76,6 +76,7 @@ fn common(increment_required: bool) -> Vec<Entry> {
         simp("RESULTAT").co(&[ConceptKind::EvolTher]),
         simp("MODELE").co(&[ConceptKind::Modele]).o(),
         simp("CHAM_MATER").co(&[ConceptKind::ChamMater]).o(),
+        simp("CARA_ELEM").co(&[ConceptKind::CaraElem]),
         excit(),
         simp("TYPE_CALCUL").txt().d("TRAN").one_of(&["STAT", "TRAN"]),
         bloc(eq("TYPE_CALCUL", "TRAN"), with(kws![etat_init()], schema_temps())),

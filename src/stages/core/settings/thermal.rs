@@ -204,6 +204,13 @@ pub(super) fn read(a: &Args, command: Command, model: ConceptRef) -> Result<Sett
         }
     }
     let chmat = a.req_concept("CHAM_MATER")?;
+    let cara_elem = a.concept("CARA_ELEM");
+    if let Some(c) = &cara_elem {
+        let ca = c.cara_elem().map_err(|e| a.err("CARA_ELEM", e.msg))?;
+        if !Rc::ptr_eq(&ca.model, &model) {
+            return Err(a.err("CARA_ELEM", format!("{} is defined on another model ({})", c.label(), ca.model.label())));
+        }
+    }
     if super::has_varc(&chmat) {
         return Err(a.err("CHAM_MATER", "AFFE_VARC in a thermal computation is not supported yet"));
     }
@@ -292,6 +299,7 @@ pub(super) fn read(a: &Args, command: Command, model: ConceptRef) -> Result<Sett
         sites,
         model,
         chmat: Some(chmat),
+        cara_elem,
         excit,
         times,
         subdivision: None,

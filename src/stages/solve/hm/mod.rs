@@ -43,6 +43,7 @@ pub fn stat_non_line_hm(ctx: &mut Ctx, cfg: &Settings) -> Result<Option<ConceptD
     Ok(Some(ConceptData::Result(ResultData {
         model: cfg.model.clone(),
         material: Some(chmat),
+        cara_elem: cfg.cara_elem.clone(),
         loads: cfg.loads(),
         steps,
     })))

@@ -127,6 +127,7 @@ fn solve_xfem(ctx: &mut Ctx, cfg: &Settings, init: Option<state::Source>) -> Res
     Ok(Some(ConceptData::Result(ResultData {
         model: model.clone(),
         material: Some(s.chmat.clone()),
+        cara_elem: cfg.cara_elem.clone(),
         loads: cfg.loads(),
         steps,
     })))
