@@ -10,6 +10,7 @@ use crate::concepts::table::{Cell, ColType, Table};
 use crate::concepts::ConceptData;
 use crate::diag::Result;
 use crate::stages::{Access, Ctx, UnitState};
+use std::rc::Rc;
 
 pub fn nothing(_ctx: &mut Ctx, args: &Args) -> Result<Option<ConceptData>> {
     args.read_all();
@@ -20,10 +21,28 @@ pub fn nothing(_ctx: &mut Ctx, args: &Args) -> Result<Option<ConceptData>> {
 /// that a later use of the name is a NameError, as in Code_Aster. OBJET (a JEVEUX object by name)
 /// has no counterpart here and stops the run by name.
 pub fn detruire(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
-    a.refuse(&["OBJET"])?;
     let mut concepts = a.concepts("NOM");
     for occ in a.facts("CONCEPT") {
         concepts.extend(occ.concepts("NOM"));
+    }
+    // OBJET: Code_Aster destroys the memory objects whose names hold CHAINE (at POSITION, from 1); a
+    // concept's objects carry its name first, so here the concepts whose names hold it go.
+    for occ in a.facts("OBJET") {
+        let pos = occ.int("POSITION").and_then(|p| usize::try_from(p - 1).ok());
+        for s in occ.texts("CHAINE") {
+            let hit = |name: &str| match pos {
+                Some(p) => name.get(p..).is_some_and(|t| t.starts_with(s.as_str())),
+                None => name.contains(s.as_str()),
+            };
+            let globals = ctx.globals.borrow();
+            for v in globals.values() {
+                if let crate::interp::value::Value::Concept(c) = v {
+                    if hit(&c.name()) && !concepts.iter().any(|k| Rc::ptr_eq(k, c)) {
+                        concepts.push(c.clone());
+                    }
+                }
+            }
+        }
     }
     let info = a.int("INFO").unwrap_or(1);
     for c in concepts {

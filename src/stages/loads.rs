@@ -72,12 +72,22 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
     };
     let mut items = Vec::new();
     for occ in a.facts("DDL_IMPO") {
-        for k in ["BLOCAGE", "LIAISON"] {
-            if occ.given(k) {
-                return Err(occ.err(k, "not supported yet"));
-            }
+        if occ.given("BLOCAGE") {
+            return Err(occ.err("BLOCAGE", "not supported yet"));
         }
-        let comps = components(occ, &[]);
+        let mut comps = components(occ, &["LIAISON"]);
+        // LIAISON='ENCASTRE' clamps the nodes: every displacement component of the model is zero.
+        match occ.text("LIAISON") {
+            None => {}
+            Some("ENCASTRE") => {
+                for c in &["DX", "DY", "DZ"][..mo_dim(&mo)?] {
+                    if !comps.iter().any(|(k, _)| k == c) {
+                        comps.push((c.to_string(), LoadValue::Real(0.0)));
+                    }
+                }
+            }
+            Some(l) => return Err(occ.err("LIAISON", format!("LIAISON='{l}' is not supported yet (ENCASTRE is)"))),
+        }
         if comps.is_empty() {
             return Err(occ.err("DDL_IMPO", "no component is prescribed"));
         }
@@ -207,9 +217,10 @@ fn mo_dim(mo: &ConceptRef) -> Result<usize> {
 /// SANS_GROUP_MA and SANS_GROUP_NO), or DNOR: at each of those nodes
 /// `u · n = value`, with `n` the mean of the unit normals of the cells at the
 /// node (Code_Aster's `canort`), each cell's normal turned out of the cell
-/// it bounds where there is one on a single side.
+/// it bounds where there is one on a single side; or, in 2D, DTAN: `u · t = value` along the mean
+/// tangent `t` of the segments at the node, each taken along its own node order (`n = (t_y, −t_x)`).
 fn face_impo(mesh: &Mesh, occ: &Args, name: &str, dim: usize, functional: bool) -> Result<Vec<LoadItem>> {
-    for k in ["DRX", "DRY", "DRZ", "DRNOR", "DTAN", "GRX", "PRES", "PHI", "TEMP", "PRE1", "PRE2"] {
+    for k in ["DRX", "DRY", "DRZ", "DRNOR", "GRX", "PRES", "PHI", "TEMP", "PRE1", "PRE2"] {
         if occ.given(k) {
             return Err(occ.err(k, "not supported yet"));
         }
@@ -244,10 +255,18 @@ fn face_impo(mesh: &Mesh, occ: &Args, name: &str, dim: usize, functional: bool) 
     nodes.dedup();
     nodes.retain(|n| !excluded.contains(n));
     let mut items = Vec::new();
-    if occ.given("DNOR") {
-        let value = occ.val("DNOR").and_then(load_value).ok_or_else(|| occ.err("DNOR", "a value is required"))?;
-        if functional || matches!(value, LoadValue::Func(_)) {
-            return Err(occ.err("DNOR", "DNOR given by a function is not supported yet"));
+    if occ.given("DTAN") && dim != 2 {
+        return Err(occ.err("DTAN", "DTAN is for plane models (in 3D the tangent plane has two directions)"));
+    }
+    let along: Vec<&str> = ["DNOR", "DTAN"].into_iter().filter(|k| occ.given(k)).collect();
+    if !along.is_empty() {
+        let mut values = Vec::new();
+        for k in &along {
+            let value = occ.val(k).and_then(load_value).ok_or_else(|| occ.err(k, "a value is required"))?;
+            if functional || matches!(value, LoadValue::Func(_)) {
+                return Err(occ.err(k, format!("{k} given by a function is not supported yet")));
+            }
+            values.push((*k, value));
         }
         let node_cells = geometry::node_to_cells(mesh);
         let mut signs = Vec::with_capacity(cells.len());
@@ -257,7 +276,8 @@ fn face_impo(mesh: &Mesh, occ: &Args, name: &str, dim: usize, functional: bool) 
                 return Err(occ.err(
                     "GROUP_MA",
                     format!(
-                        "DNOR: cell {} is a {}; the normal is taken on {} of a {dim}D model",
+                        "{}: cell {} is a {}; the normal is taken on {} of a {dim}D model",
+                        along[0],
                         mesh.cell_names[c],
                         t.name(),
                         if dim == 2 { "segments (SEG2, SEG3)" } else { "faces (TRIA3/6, QUAD4/8/9)" }
@@ -267,11 +287,26 @@ fn face_impo(mesh: &Mesh, occ: &Args, name: &str, dim: usize, functional: bool) 
             signs.push(geometry::outward_sign(mesh, &node_cells, c).unwrap_or(1.0));
         }
         let normals = geometry::averaged_node_normals(mesh, &cells, &signs).map_err(|e| occ.err("GROUP_MA", e))?;
+        // The tangent runs along each segment's own orientation (Code_Aster's canort): from the normals
+        // of the segments as they are, unturned.
+        let raw = if occ.given("DTAN") {
+            geometry::averaged_node_normals(mesh, &cells, &vec![1.0; cells.len()])
+                .map_err(|e| occ.err("GROUP_MA", e))?
+        } else {
+            Default::default()
+        };
         for node in nodes {
-            let n = normals[&node];
-            let terms =
-                ["DX", "DY", "DZ"][..dim].iter().enumerate().map(|(k, c)| (node, c.to_string(), n[k])).collect();
-            items.push(LoadItem::Relation { terms, value: value.clone() });
+            for (k, value) in &values {
+                let d = if *k == "DNOR" {
+                    normals[&node]
+                } else {
+                    let n = raw[&node];
+                    [-n[1], n[0], 0.0]
+                };
+                let terms =
+                    ["DX", "DY", "DZ"][..dim].iter().enumerate().map(|(i, c)| (node, c.to_string(), d[i])).collect();
+                items.push(LoadItem::Relation { terms, value: value.clone() });
+            }
         }
         return Ok(items);
     }

@@ -6,6 +6,7 @@
 //! stress, uniaxial) and written into the command file's TEST_RESU lines, so
 //! a run with every check OK means the stages agree with the analytic values.
 
+use crate::common::{resu_rows, run_on_box};
 use aster::med;
 use aster::mesh::generate::box_mesh;
 use aster::mesh::{CellType, Mesh};
@@ -276,8 +277,8 @@ fn located_errors() {
         ),
         (
             "MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='D_PLAN'))\n\
-             CH = AFFE_CHAR_MECA(MODELE=MO, FACE_IMPO=_F(GROUP_MA='BAS', DTAN=0.0))\n",
-            "FACE_IMPO/DTAN: not supported yet",
+             CH = AFFE_CHAR_MECA(MODELE=MO, FACE_IMPO=_F(GROUP_MA='BAS', DRNOR=0.0))\n",
+            "FACE_IMPO/DRNOR: not supported yet",
             ":4:",
         ),
     ];
@@ -303,5 +304,68 @@ fn located_errors() {
         ),
     );
     assert!(o.error.is_none(), "{:?}", o.error);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Three ways to clamp the bottom of a square pulled sideways and up at its top: DDL_IMPO DX = DY = 0,
+/// DDL_IMPO LIAISON='ENCASTRE', and FACE_IMPO DNOR = DTAN = 0 (the normal and the tangent of the edge
+/// blocked). The displacements of the top agree to round-off; DETRUIRE OBJET removes the concepts whose
+/// names hold its string, and DTAN on a 3D model stops by name.
+#[test]
+fn clamping_by_components_encastre_and_dnor_dtan_agree() {
+    let dir = scratch!("clamp");
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut comm = String::from(
+        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\
+         MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='D_PLAN'))\n\
+         MAT = DEFI_MATERIAU(ELAS=_F(E=2.0e5, NU=0.3))\n\
+         CM = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=MAT))\n\
+         PULL = AFFE_CHAR_MECA(MODELE=MO, FORCE_CONTOUR=_F(GROUP_MA='HAUT', FX=30.0, FY=50.0))\n\
+         CA = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='BAS', DX=0.0, DY=0.0))\n\
+         CB = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=_F(GROUP_NO='BAS', LIAISON='ENCASTRE'))\n\
+         CC = AFFE_CHAR_MECA(MODELE=MO, FACE_IMPO=_F(GROUP_MA='BAS', DNOR=0.0, DTAN=0.0))\n\
+         XXTMP = DEFI_CONSTANTE(VALE=1.0)\n\
+         DETRUIRE(CONCEPT=_F(NOM=XXTMP), OBJET=_F(CHAINE='XXT'))\n",
+    );
+    for k in ["A", "B", "C"] {
+        comm += &format!(
+            "R{k} = MECA_STATIQUE(MODELE=MO, CHAM_MATER=CM, EXCIT=(_F(CHARGE=PULL), _F(CHARGE=C{k})))\n\
+             T{k} = POST_RELEVE_T(ACTION=_F(OPERATION='EXTRACTION', INTITULE='{k}', RESULTAT=R{k}, NOM_CHAM='DEPL',\n\
+                                  GROUP_NO='HAUT', NOM_CMP=('DX', 'DY')))\n\
+             IMPR_TABLE(TABLE=T{k}, FORMAT_R='E20.13')\n"
+        );
+    }
+    comm += "FIN()\n";
+    let (status, mess, resu) = run_on_box(&dir, ("QUAD8", "3,3", "1,1"), &comm);
+    assert!(status.success(), "{mess}");
+    let rows: Vec<_> = ["A", "B", "C"].iter().map(|k| resu_rows(&resu, k)).collect();
+    assert!(rows[0].len() >= 7, "{resu}");
+    let num = |r: &std::collections::BTreeMap<String, String>, c: &str| r[c].parse::<f64>().unwrap();
+    let scale = rows[0].iter().map(|r| num(r, "DY").abs()).fold(0.0, f64::max);
+    assert!(scale > 1e-5, "{resu}");
+    for other in &rows[1..] {
+        assert_eq!(other.len(), rows[0].len());
+        for (a, b) in rows[0].iter().zip(other) {
+            for c in ["DX", "DY"] {
+                assert!((num(a, c) - num(b, c)).abs() <= 1e-10 * scale, "{c}: {a:?} vs {b:?}");
+            }
+        }
+    }
+    // XXTMP is gone: using it is a NameError.
+    let (status, mess, _) = run_on_box(
+        &dir,
+        ("QUAD4", "1,1", "1,1"),
+        "DEBUT()\nXXTMP = DEFI_CONSTANTE(VALE=1.0)\nK = DEFI_CONSTANTE(VALE=2.0)\n\
+         DETRUIRE(CONCEPT=_F(NOM=K), OBJET=_F(CHAINE='XXT'))\nv = XXTMP(0.0)\nFIN()\n",
+    );
+    assert!(!status.success() && mess.contains("XXTMP"), "{mess}");
+    let (status, mess, _) = run_on_box(
+        &dir,
+        ("HEXA8", "1,1,1", "1,1,1"),
+        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\
+         MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='3D'))\n\
+         CC = AFFE_CHAR_MECA(MODELE=MO, FACE_IMPO=_F(GROUP_MA='ZMIN', DTAN=0.0))\nFIN()\n",
+    );
+    assert!(!status.success() && mess.contains("DTAN is for plane models"), "{mess}");
     let _ = std::fs::remove_dir_all(&dir);
 }
