@@ -2,7 +2,7 @@
 
 use crate::catalog::args::{ArgValue, Args, Val};
 use crate::concepts::model::{MatValue, Material, MaterialField, Varc, VarcSource};
-use crate::concepts::ConceptData;
+use crate::concepts::{ConceptData, ConceptKind};
 use crate::diag::Result;
 use crate::stages::select::select_cells;
 use crate::stages::Ctx;
@@ -71,7 +71,7 @@ pub fn affe_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     Ok(Some(ConceptData::MaterialField(MaterialField { mesh, cells, varc })))
 }
 
-/// One occurrence of AFFE_VARC: the temperature (NOM_VARC='TEMP') from an EVOL_THER (its TEMP field) or
+/// One occurrence of AFFE_VARC: the temperature (NOM_VARC='TEMP') from an EVOL_THER or EVOL_VARC (its TEMP field) or
 /// a field on nodes; the other command variables stop by name.
 fn affe_varc(mesh: &crate::mesh::Mesh, occ: &Args, name: &str) -> Result<Varc> {
     let nom = occ.req_text("NOM_VARC")?.to_string();
@@ -87,8 +87,11 @@ fn affe_varc(mesh: &crate::mesh::Mesh, occ: &Args, name: &str) -> Result<Varc> {
     };
     let source = match (occ.concept("EVOL"), occ.concept("CHAM_GD")) {
         (Some(r), _) => {
-            if r.kind() != crate::concepts::ConceptKind::EvolTher {
-                return Err(occ.err("EVOL", format!("{} is not a thermal result (EVOL_THER)", r.label())));
+            if !matches!(r.kind(), ConceptKind::EvolTher | ConceptKind::EvolVarc) {
+                return Err(occ.err(
+                    "EVOL",
+                    format!("{} is an {}, not a temperature (EVOL_THER or EVOL_VARC)", r.label(), r.kind()),
+                ));
             }
             let field = occ.text("NOM_CHAM").unwrap_or("TEMP").to_string();
             if field != "TEMP" {
@@ -97,7 +100,7 @@ fn affe_varc(mesh: &crate::mesh::Mesh, occ: &Args, name: &str) -> Result<Varc> {
             VarcSource::Evol { result: r, field }
         }
         (None, Some(f)) => {
-            if f.kind() != crate::concepts::ConceptKind::ChamNo {
+            if f.kind() != ConceptKind::ChamNo {
                 return Err(occ.err("CHAM_GD", format!("{} is not a field on nodes (cham_no)", f.label())));
             }
             VarcSource::Field(f)

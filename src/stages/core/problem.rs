@@ -201,7 +201,7 @@ pub fn thermal_strain(chmat: &ConceptRef, p: &Problem) -> Result<Option<ThermalS
         }
         sources.push(match &v.source {
             VarcSource::Field(f) => {
-                let values = temp_of_field(&f.field()?.field, nnodes, &f.label())?;
+                let values = temp_of_field(f.field()?.reals(&f.label())?, nnodes, &f.label())?;
                 Box::new(move |_t| Ok(values.clone()))
             }
             VarcSource::Evol { result, field } => {

@@ -1,5 +1,5 @@
-//! Fields of their own and fields on skins: CREA_CHAMP (AFFE, EXTR from a result or a mesh's geometry,
-//! EVAL)
+//! Fields of their own and fields on skins: CREA_CHAMP (AFFE — of reals, or of functions on nodes or
+//! cells —, EXTR from a result or a mesh's geometry, EVAL of a field of functions on nodes or cells)
 //! and CALC_CHAMP's SIRO_ELEM (the stress vector on skin cells).
 //!
 //! SIRO_ELEM follows Code_Aster's plane rosette (`te0554`): the stress of the
@@ -48,7 +48,7 @@ pub fn crea_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
 
 fn affe(a: &Args) -> Result<FieldData> {
     let (loc, func) = type_cham(a)?;
-    if !matches!(loc, "ELEM" | "ELGA") && (loc != "NOEU" || func) || (loc == "ELGA" && func) {
+    if !matches!(loc, "ELEM" | "ELGA" | "NOEU") || (loc == "ELGA" && func) {
         return Err(a.err("TYPE_CHAM", format!("TYPE_CHAM='{}' is not supported yet", a.text("TYPE_CHAM").unwrap())));
     }
     let (mesh_concept, on_model): (ConceptRef, Option<Vec<bool>>) = match a.concept("MODELE") {
@@ -245,6 +245,52 @@ pub fn eval_cells(
     Ok(out)
 }
 
+/// Evaluate the `n` functions per node of a field on nodes (None: the zero function) with their parameters taken
+/// by name among the components the fields `paras` have at the same node, as Code_Aster does
+/// (`cnseva`): a parameter given by two of them is an error, one given by none too.
+pub fn eval_nodes(
+    funcs: &[Option<Vec<Option<ConceptRef>>>],
+    n: usize,
+    paras: &[(&str, &Field)],
+    node_names: &[String],
+) -> Result<Vec<f64>> {
+    let mut out = vec![f64::NAN; funcs.len() * n];
+    let mut given: Vec<(&str, f64, &str)> = Vec::new();
+    for (i, fs) in funcs.iter().enumerate() {
+        let Some(fs) = fs else { continue };
+        given.clear();
+        for &(label, p) in paras {
+            let Field::Node { components, values } = p else { continue };
+            let m = components.len();
+            for (k, c) in components.iter().enumerate() {
+                let v = values.get(i * m + k).copied().unwrap_or(f64::NAN);
+                if v.is_nan() {
+                    continue;
+                }
+                if let Some((_, _, first)) = given.iter().find(|g| g.0 == c) {
+                    return Err(Error::runtime(format!(
+                        "CHAM_PARA: parameter {c} is given at node {} by two fields ({first} and {label})",
+                        node_names[i]
+                    )));
+                }
+                given.push((c, v, label));
+            }
+        }
+        let arg = |name: &str| -> Result<f64> {
+            given.iter().find(|g| g.0 == name).map(|g| g.1).ok_or_else(|| {
+                Error::runtime(format!(
+                    "CHAM_PARA: parameter {name} has no value at node {} in the parameter fields",
+                    node_names[i]
+                ))
+            })
+        };
+        for (k, g) in fs.iter().enumerate() {
+            out[i * n + k] = g.as_ref().map_or(Ok(0.0), |g| eval_named(g, &arg))?;
+        }
+    }
+    Ok(out)
+}
+
 fn eval(a: &Args) -> Result<FieldData> {
     let (loc, func) = type_cham(a)?;
     if func {
@@ -252,27 +298,50 @@ fn eval(a: &Args) -> Result<FieldData> {
     }
     let fc = a.req_concept("CHAM_F")?;
     let f = fc.field()?;
-    let (Field::Elem { components, .. }, Some(funcs)) = (&f.field, &f.functions) else {
-        return Err(a.err("CHAM_F", format!("{} is not a field of functions by cell (ELEM_*_F)", fc.label())));
+    let Some(funcs) = &f.functions else {
+        return Err(a.err("CHAM_F", format!("{} is not a field of functions (*_F)", fc.label())));
     };
-    if loc != "ELEM" {
-        return Err(a.err("TYPE_CHAM", format!("TYPE_CHAM='{}' is not supported yet", a.text("TYPE_CHAM").unwrap())));
+    let node = matches!(f.field, Field::Node { .. });
+    if !matches!((loc, &f.field), ("ELEM", Field::Elem { .. }) | ("NOEU", Field::Node { .. })) {
+        return Err(a.err(
+            "TYPE_CHAM",
+            format!(
+                "TYPE_CHAM='{}' is not supported yet for CHAM_F {} (EVAL makes NOEU_*_R fields of NOEU_*_F ones and \
+                 ELEM_*_R of ELEM_*_F)",
+                a.text("TYPE_CHAM").unwrap(),
+                fc.label()
+            ),
+        ));
     }
     let mesh = f.mesh_concept.mesh()?;
     let paras = a.concepts("CHAM_PARA");
     let para_data: Vec<std::cell::Ref<'_, FieldData>> = paras.iter().map(|c| c.field()).collect::<Result<_>>()?;
     for (p, d) in paras.iter().zip(&para_data) {
-        if !matches!(d.field, Field::Elem { .. }) || d.functions.is_some() {
-            return Err(a.err("CHAM_PARA", format!("{} is not a field of reals by cell (ELEM_*_R)", p.label())));
+        let fits = if node { matches!(d.field, Field::Node { .. }) } else { matches!(d.field, Field::Elem { .. }) };
+        if !fits || d.functions.is_some() {
+            let want = if node { "on nodes (NOEU_*_R)" } else { "by cell (ELEM_*_R)" };
+            return Err(a.err("CHAM_PARA", format!("{} is not a field of reals {want}", p.label())));
+        }
+        if node && !std::rc::Rc::ptr_eq(&d.mesh_concept, &f.mesh_concept) {
+            return Err(a.err(
+                "CHAM_PARA",
+                format!("{} lies on mesh {}, CHAM_F on {}", p.label(), d.mesh_concept.label(), f.mesh_concept.label()),
+            ));
         }
     }
-    let para_fields: Vec<&Field> = para_data.iter().map(|d| &d.field).collect();
-    let out = eval_cells(funcs, &para_fields, &mesh.cell_names).map_err(|e| e.at(a.span))?;
-    Ok(FieldData {
-        mesh_concept: f.mesh_concept.clone(),
-        field: Field::Elem { components: components.clone(), cells: out },
-        functions: None,
-    })
+    let components = f.field.components().to_vec();
+    let field = if node {
+        let labels: Vec<String> = paras.iter().map(|p| p.label()).collect();
+        let para_fields: Vec<(&str, &Field)> =
+            labels.iter().map(String::as_str).zip(para_data.iter().map(|d| &d.field)).collect();
+        let values = eval_nodes(funcs, components.len(), &para_fields, &mesh.node_names).map_err(|e| e.at(a.span))?;
+        Field::Node { components, values }
+    } else {
+        let para_fields: Vec<&Field> = para_data.iter().map(|d| &d.field).collect();
+        let cells = eval_cells(funcs, &para_fields, &mesh.cell_names).map_err(|e| e.at(a.span))?;
+        Field::Elem { components, cells }
+    };
+    Ok(FieldData { mesh_concept: f.mesh_concept.clone(), field, functions: None })
 }
 
 #[cfg(test)]
@@ -300,5 +369,30 @@ mod tests {
         let funcs = vec![None, Some(vec![Some(form)]), None];
         let e = eval_cells(&funcs, &[&siro, &neut], &names).unwrap_err();
         assert!(e.msg.contains("SIG_N") && e.msg.contains("M2"), "{}", e.msg);
+    }
+
+    #[test]
+    fn eval_on_nodes_takes_each_parameter_from_the_one_field_that_has_it() {
+        use crate::concepts::{Concept, ConceptKind};
+        let globals: crate::interp::Scope = Default::default();
+        let form =
+            crate::interp::Formula::new("X*10 + INST", vec!["X".into(), "INST".into()], vec![], globals).unwrap();
+        let form = Concept::new(ConceptKind::Formule, ConceptData::Formula(form.into_concept()));
+        // Node 0: the formula; node 1: the zero function (PROL_ZERO); node 2: no value.
+        let funcs = vec![Some(vec![Some(form.clone())]), Some(vec![None]), None];
+        let geom = Field::Node {
+            components: vec!["X".into(), "Y".into(), "Z".into()],
+            values: vec![1.0, 0.0, 0.0, 2.0, 0.0, 0.0, 3.0, 0.0, 0.0],
+        };
+        let inst = Field::Node { components: vec!["INST".into()], values: vec![0.5, 0.5, 0.5] };
+        let names: Vec<String> = ["N1", "N2", "N3"].iter().map(|s| s.to_string()).collect();
+        let out = eval_nodes(&funcs, 1, &[("GEOM", &geom), ("T", &inst)], &names).unwrap();
+        assert_eq!(out[..2], [10.5, 0.0]);
+        assert!(out[2].is_nan());
+        // A parameter no field gives, or two give, is an error naming it and the node.
+        let e = eval_nodes(&funcs, 1, &[("GEOM", &geom)], &names).unwrap_err();
+        assert!(e.msg.contains("INST") && e.msg.contains("N1"), "{}", e.msg);
+        let e = eval_nodes(&funcs, 1, &[("GEOM", &geom), ("T", &inst), ("U", &inst)], &names).unwrap_err();
+        assert!(e.msg.contains("INST") && e.msg.contains("two fields"), "{}", e.msg);
     }
 }
