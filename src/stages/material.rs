@@ -78,7 +78,6 @@ fn affe_varc(mesh: &crate::mesh::Mesh, occ: &Args, name: &str) -> Result<Varc> {
     if nom != "TEMP" {
         return Err(occ.err("NOM_VARC", format!("NOM_VARC='{nom}' is not supported yet (TEMP is)")));
     }
-    occ.refuse(&["FONC_INST"])?;
     // Without TOUT, GROUP_MA or MAILLE, the variable is on every cell.
     let cells = if ["TOUT", "GROUP_MA", "MAILLE"].iter().any(|k| occ.has(k)) {
         select_cells(mesh, occ, name)?
@@ -97,7 +96,7 @@ fn affe_varc(mesh: &crate::mesh::Mesh, occ: &Args, name: &str) -> Result<Varc> {
             if field != "TEMP" {
                 return Err(occ.err("NOM_CHAM", format!("NOM_CHAM='{field}' is not supported yet (TEMP is)")));
             }
-            VarcSource::Evol { result: r, field }
+            VarcSource::Evol { result: r, field, fonc_inst: occ.concept("FONC_INST") }
         }
         (None, Some(f)) => {
             if f.kind() != ConceptKind::ChamNo {

@@ -374,7 +374,7 @@ fn crea_champ_extr() -> Bloc {
         kws![
             simp("MAILLAGE").co(&[ConceptKind::Maillage]),
             simp("FISSURE").co(&[ConceptKind::FissXfem]),
-            simp("RESULTAT").co(RESULTS),
+            simp("RESULTAT").co(STORED_RESULTS),
             simp("TABLE").co(&[ConceptKind::Table]),
             simp("CHARGE").co(&[ConceptKind::CharMeca]),
             bloc(

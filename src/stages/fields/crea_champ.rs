@@ -41,6 +41,7 @@ pub fn crea_champ(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         "AFFE" => affe(a),
         "EXTR" => extr(a),
         "EVAL" => eval(a),
+        "ASSE" => asse(a),
         o => Err(a.err("OPERATION", format!("OPERATION='{o}' is not supported yet"))),
     }
     .map(|f| Some(ConceptData::Field(f)))
@@ -154,6 +155,178 @@ fn affe(a: &Args) -> Result<FieldData> {
         Field::Elem { components: comps, cells: values }
     };
     Ok(FieldData { mesh_concept, field, functions: func.then_some(funcs) })
+}
+
+/// The values of component `k` at place `p` (a node, or a cell: one per integration point or cell node),
+/// None where the field has none.
+fn point_values(f: &Field, p: usize, k: usize) -> Option<Vec<f64>> {
+    let n = f.components().len();
+    match f {
+        Field::Node { values, .. } => values.get(p * n + k).copied().filter(|v| !v.is_nan()).map(|v| vec![v]),
+        Field::Elem { cells, .. } => {
+            cells.get(p)?.as_ref().and_then(|c| c.get(k).copied()).filter(|v| !v.is_nan()).map(|v| vec![v])
+        }
+        Field::Elga { cells, .. } | Field::Elno { cells, .. } => {
+            let pts: Vec<f64> = cells.get(p)?.as_ref()?.iter().skip(k).step_by(n).copied().collect();
+            (!pts.iter().all(|v| v.is_nan())).then_some(pts)
+        }
+    }
+}
+
+/// ASSE: a field assembled from pieces of others, as Code_Aster's `chpass` does: each occurrence takes
+/// the components NOM_CMP (all by default) of CHAM_GD, renamed NOM_CMP_RESU, times COEF_R, on the nodes
+/// (NOEU) or cells (EL*) of TOUT / GROUP_MA / GROUP_NO; where the result already has a value, CUMUL='OUI'
+/// adds to it and 'NON' replaces it. PROL_ZERO='OUI' gives the components missing on the model's cells
+/// the value 0 (EL* fields).
+fn asse(a: &Args) -> Result<FieldData> {
+    let (loc, func) = type_cham(a)?;
+    let t = a.text("TYPE_CHAM").unwrap_or_default().to_string();
+    if func || t.ends_with("_C") || !matches!(loc, "NOEU" | "ELEM" | "ELGA" | "ELNO") {
+        return Err(a.err("TYPE_CHAM", format!("OPERATION='ASSE' of TYPE_CHAM='{t}' is not supported yet")));
+    }
+    // OPTION names the element option whose layout a cell field has in Code_Aster; here the layout
+    // (points per cell) is the assembled fields' own, so it changes nothing.
+    let _ = a.text("OPTION");
+    let prol_zero = a.text("PROL_ZERO") == Some("OUI");
+    let model = a.concept("MODELE");
+    let mesh_concept = match &model {
+        Some(mo) => mo.model()?.mesh_concept.clone(),
+        None => a.req_concept("MAILLAGE")?,
+    };
+    let mesh = mesh_concept.mesh()?;
+    let mesh_name = mesh_concept.label();
+    let nplaces = if loc == "NOEU" { mesh.coords.len() } else { mesh.cells.len() };
+    let mut comps: Vec<String> = Vec::new();
+    // Per component of the result, per place, the values at its points.
+    let mut vals: Vec<Vec<Option<Vec<f64>>>> = Vec::new();
+    for occ in a.facts("ASSE") {
+        occ.refuse(&["COEF_C"])?;
+        let fc = occ.req_concept("CHAM_GD")?;
+        let fd = fc.field().map_err(|e| occ.locate(e, "CHAM_GD"))?;
+        let field = fd.reals(&fc.label()).map_err(|e| occ.locate(e, "CHAM_GD"))?;
+        if !std::rc::Rc::ptr_eq(&fd.mesh_concept, &mesh_concept) {
+            return Err(occ.err(
+                "CHAM_GD",
+                format!("{} lies on mesh {}, the field made on {mesh_name}", fc.label(), fd.mesh_concept.label()),
+            ));
+        }
+        if !same_location(loc, field) {
+            return Err(occ.err(
+                "CHAM_GD",
+                format!("{} is not a {loc} field: assembling it into TYPE_CHAM='{t}' is not supported yet", fc.label()),
+            ));
+        }
+        let names = occ.texts("NOM_CMP");
+        let taken: Vec<String> = if names.is_empty() { field.components().to_vec() } else { names };
+        let renamed = occ.texts("NOM_CMP_RESU");
+        if !renamed.is_empty() && renamed.len() != taken.len() {
+            return Err(
+                occ.err("NOM_CMP_RESU", format!("{} names for {} components (NOM_CMP)", renamed.len(), taken.len()))
+            );
+        }
+        let mut index = Vec::with_capacity(taken.len());
+        for c in &taken {
+            index.push(field.component(c).ok_or_else(|| {
+                occ.err(
+                    "NOM_CMP",
+                    format!("{} has no component {c} (it has {})", fc.label(), field.components().join(", ")),
+                )
+            })?);
+        }
+        let coef = occ.real("COEF_R").unwrap_or(1.0);
+        let cumul = occ.text("CUMUL") == Some("OUI");
+        let places =
+            if loc == "NOEU" { select_nodes(&mesh, occ, &mesh_name)? } else { select_cells(&mesh, occ, &mesh_name)? };
+        for (j, &k) in index.iter().enumerate() {
+            let name = if renamed.is_empty() { &taken[j] } else { &renamed[j] };
+            let r = match comps.iter().position(|c| c == name) {
+                Some(r) => r,
+                None => {
+                    comps.push(name.clone());
+                    vals.push(vec![None; nplaces]);
+                    comps.len() - 1
+                }
+            };
+            for &p in &places {
+                let Some(v) = point_values(field, p, k) else { continue };
+                let slot = &mut vals[r][p];
+                match slot {
+                    Some(old) if cumul => {
+                        if old.len() != v.len() {
+                            return Err(occ.err(
+                                "CHAM_GD",
+                                format!(
+                                    "{}: cell {} has {} points here, {} in the field assembled so far",
+                                    fc.label(),
+                                    mesh.cell_names[p],
+                                    v.len(),
+                                    old.len()
+                                ),
+                            ));
+                        }
+                        old.iter_mut().zip(&v).for_each(|(o, x)| *o += coef * x);
+                    }
+                    _ => *slot = Some(v.iter().map(|x| coef * x).collect()),
+                }
+            }
+        }
+    }
+    let n = comps.len();
+    // The points of each place: the same for every component there.
+    let mut npts: Vec<Option<usize>> = vec![None; nplaces];
+    for cv in &vals {
+        for (p, v) in cv.iter().enumerate() {
+            let Some(v) = v else { continue };
+            match npts[p] {
+                Some(m) if m != v.len() => {
+                    return Err(a.err(
+                        "ASSE",
+                        format!(
+                            "cell {}: the fields assembled have {m} and {} points there",
+                            mesh.cell_names[p],
+                            v.len()
+                        ),
+                    ))
+                }
+                _ => npts[p] = Some(v.len()),
+            }
+        }
+    }
+    if prol_zero && loc != "NOEU" {
+        let mo = model.as_ref().ok_or_else(|| a.err("PROL_ZERO", "PROL_ZERO='OUI' of a cell field needs MODELE"))?;
+        let m = mo.model()?;
+        for (c, e) in m.elements.iter().enumerate() {
+            let Some(e) = e.as_ref().filter(|e| e.role == crate::concepts::model::Role::Bulk) else { continue };
+            if npts[c].is_none() {
+                npts[c] = Some(match loc {
+                    "ELGA" => crate::stages::core::hm::elga_points(e.modelisation, mesh.cell_types[c])
+                        .map_err(|msg| a.err("PROL_ZERO", format!("cell {}: {msg}", mesh.cell_names[c])))?,
+                    "ELNO" => mesh.cells[c].len(),
+                    _ => 1,
+                });
+            }
+        }
+    }
+    let fill = if prol_zero { 0.0 } else { f64::NAN };
+    let at = |p: usize, g: usize, k: usize| vals[k][p].as_ref().map_or(fill, |v| v[g]);
+    let field = if loc == "NOEU" {
+        let vals = &vals;
+        let values =
+            (0..nplaces).flat_map(|p| (0..n).map(move |k| vals[k][p].as_ref().map_or(f64::NAN, |v| v[0]))).collect();
+        Field::Node { components: comps, values }
+    } else {
+        let cells: Vec<Option<Vec<f64>>> = (0..nplaces)
+            .map(|p| {
+                npts[p].map(|m| (0..m).flat_map(|g| (0..n).map(move |k| (g, k))).map(|(g, k)| at(p, g, k)).collect())
+            })
+            .collect();
+        match loc {
+            "ELGA" => Field::Elga { components: comps, cells },
+            "ELNO" => Field::Elno { components: comps, cells },
+            _ => Field::Elem { components: comps, cells },
+        }
+    };
+    Ok(FieldData { mesh_concept, field, functions: None })
 }
 
 fn extr(a: &Args) -> Result<FieldData> {

@@ -91,15 +91,15 @@ FIN()
 }
 
 /// A strip held in x at both ends and in y along its bottom (C_PLAN) under a uniform temperature 100 t of a
-/// CREA_RESU EVOL_THER: σxx = −E α T at t = 1 and, interpolated between the result's instants, at 0.25.
+/// CREA_RESU EVOL_THER: σxx = −E α T at t = 1 and, interpolated between the result's instants, at 0.25;
+/// with AFFE_VARC FONC_INST = t / 2 the result is read at half the instant: at t = 1, T = 50.
 #[test]
 fn a_created_evol_ther_drives_the_thermal_strain_of_mechanics() {
     let sig = |t: f64| -2.0e11 * 1.0e-5 * 100.0 * t;
-    let check = |res: &str, t: f64| {
+    let check = |res: &str, t: f64, v: f64| {
         format!(
             "TEST_RESU(RESU=_F(RESULTAT={res}, INST={t}, NOM_CHAM=\"SIEF_ELGA\", NOM_CMP=\"SIXX\", TYPE_TEST=\"MIN\", \
-             VALE_CALC={v:e}, VALE_REFE={v:e}, PRECISION=1e-9, REFERENCE=\"ANALYTIQUE\"))\n",
-            v = sig(t)
+             VALE_CALC={v:e}, VALE_REFE={v:e}, PRECISION=1e-9, REFERENCE=\"ANALYTIQUE\"))\n"
         )
     };
     let comm = format!(
@@ -116,14 +116,19 @@ CM = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT="OUI", MATER=STEEL),
 HELD = AFFE_CHAR_MECA(MODELE=MOME, DDL_IMPO=(_F(GROUP_NO=("GAUCHE", "DROITE"), DX=0.0), _F(GROUP_NO="BAS", DY=0.0)))
 R1 = MECA_STATIQUE(MODELE=MOME, CHAM_MATER=CM, EXCIT=_F(CHARGE=HELD), INST=1.0)
 R2 = MECA_STATIQUE(MODELE=MOME, CHAM_MATER=CM, EXCIT=_F(CHARGE=HELD), INST=0.25)
-{}{}FIN()
+HALF = FORMULE(VALE="INST/2.0", NOM_PARA="INST")
+CM2 = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT="OUI", MATER=STEEL),
+                    AFFE_VARC=_F(NOM_VARC="TEMP", EVOL=TH, VALE_REF=0.0, FONC_INST=HALF))
+R3 = MECA_STATIQUE(MODELE=MOME, CHAM_MATER=CM2, EXCIT=_F(CHARGE=HELD), INST=1.0)
+{}{}{}FIN()
 "#,
-        check("R1", 1.0),
-        check("R2", 0.25)
+        check("R1", 1.0, sig(1.0)),
+        check("R2", 0.25, sig(0.25)),
+        check("R3", 1.0, sig(0.5))
     );
     let (status, mess) = run("varc", &comm);
     assert!(status.success(), "{mess}");
-    assert_eq!(analytic_ok(&mess), 2, "{mess}");
+    assert_eq!(analytic_ok(&mess), 3, "{mess}");
 }
 
 /// ASSE: two results one after the other, the second's instants shifted by TRANSLATION; an instant equal
@@ -198,9 +203,12 @@ fn what_does_not_fit_stops_by_name() {
     }
 }
 
-/// Corpus cases that run end to end with every check OK: PROL_RTZ (zzzz129a: a 1D radial temperature
-/// of CREA_RESU AFFE, extracted by POST_RELEVE_T, onto a tilted 3D cylinder).
-const CASES: [(&str, usize); 1] = [("zzzz129a", 20)];
+/// Corpus cases that run end to end with every check OK: PROL_RTZ (zzzz129a: a 1D radial temperature of
+/// CREA_RESU AFFE, extracted by POST_RELEVE_T, onto a tilted 3D cylinder); an EVOL_VARC of a NOEU_NEUT_F
+/// function of (INST, X, Y, Z) at the instants of a list (zzzz332a); initial temperatures made by
+/// CREA_CHAMP EVAL of a NOEU_NEUT_F function of the geometry and ASSE into NOEU_TEMP_R (ttnl101a/b/c).
+const CASES: [(&str, usize); 5] =
+    [("zzzz129a", 20), ("zzzz332a", 30), ("ttnl101a", 8), ("ttnl101b", 2), ("ttnl101c", 6)];
 
 #[test]
 fn corpus_crea_resu_cases_pass() {
