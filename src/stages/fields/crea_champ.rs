@@ -429,6 +429,7 @@ pub fn eval_nodes(
 ) -> Result<Vec<f64>> {
     let mut out = vec![f64::NAN; funcs.len() * n];
     let mut given: Vec<(&str, f64, &str)> = Vec::new();
+    let node = |i: usize| node_names.get(i).cloned().unwrap_or_else(|| format!("#{}", i + 1));
     for (i, fs) in funcs.iter().enumerate() {
         let Some(fs) = fs else { continue };
         given.clear();
@@ -443,7 +444,7 @@ pub fn eval_nodes(
                 if let Some((_, _, first)) = given.iter().find(|g| g.0 == c) {
                     return Err(Error::runtime(format!(
                         "CHAM_PARA: parameter {c} is given at node {} by two fields ({first} and {label})",
-                        node_names[i]
+                        node(i)
                     )));
                 }
                 given.push((c, v, label));
@@ -453,11 +454,11 @@ pub fn eval_nodes(
             given.iter().find(|g| g.0 == name).map(|g| g.1).ok_or_else(|| {
                 Error::runtime(format!(
                     "CHAM_PARA: parameter {name} has no value at node {} in the parameter fields",
-                    node_names[i]
+                    node(i)
                 ))
             })
         };
-        for (k, g) in fs.iter().enumerate() {
+        for (k, g) in fs.iter().enumerate().take(n) {
             out[i * n + k] = g.as_ref().map_or(Ok(0.0), |g| eval_named(g, &arg))?;
         }
     }

@@ -80,10 +80,13 @@ fn evaluate(fd: &FieldData, mesh: &Mesh, t: f64) -> Result<Field> {
         return Err(Error::runtime("only a field of functions on nodes (NOEU_*_F) is evaluated at instants"));
     };
     let n = components.len();
-    let mut values = vec![f64::NAN; mesh.coords.len() * n];
+    if funcs.len() != mesh.coords.len() {
+        return Err(Error::runtime(format!("the field has {} nodes, its mesh {} now", funcs.len(), mesh.coords.len())));
+    }
+    let mut values = vec![f64::NAN; funcs.len() * n];
     for (i, fs) in funcs.iter().enumerate() {
         let Some(fs) = fs else { continue };
-        for (k, g) in fs.iter().enumerate() {
+        for (k, g) in fs.iter().enumerate().take(n) {
             values[i * n + k] = match g {
                 None => 0.0,
                 Some(g) => eval_at(g, &mesh.coords[i], t)
