@@ -269,8 +269,9 @@ pub struct Varc {
 /// Where a command variable comes from.
 #[derive(Debug, Clone)]
 pub enum VarcSource {
-    /// EVOL: a result, its field NOM_CHAM interpolated in time.
-    Evol { result: ConceptRef, field: String },
+    /// EVOL: a result, its field NOM_CHAM interpolated in time — at the instant FONC_INST gives for the
+    /// current one, when given.
+    Evol { result: ConceptRef, field: String, fonc_inst: Option<ConceptRef> },
     /// CHAM_GD: a field on nodes, the same at every instant.
     Field(ConceptRef),
 }

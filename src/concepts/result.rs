@@ -1,20 +1,36 @@
 //! Results (`evol_elas`, `evol_noli`) and the fields they hold.
 
 use super::ConceptRef;
+use crate::diag::{Error, Result};
 use std::collections::BTreeMap;
 
 pub use crate::fem::field::Field;
 
 /// A field of its own (`cham_no`, `cham_elem`: CREA_CHAMP): its values on the
 /// cells or nodes of a mesh (the mesh concept, whose current content gives
-/// names and groups) and, for a field of functions (`*_NEUT_F`), the function of each
-/// cell and component (None: the zero function of PROL_ZERO), `field` then
-/// holding NaN.
+/// names and groups) and, for a field of functions (`*_NEUT_F`, `NOEU_TEMP_F`, ...), the function of
+/// each place — cell, or node for a field on nodes — and component (None: the zero function of
+/// PROL_ZERO), `field` then holding NaN: its values are computed where it is used (CREA_CHAMP EVAL,
+/// CREA_RESU).
 #[derive(Debug, Clone)]
 pub struct FieldData {
     pub mesh_concept: ConceptRef,
     pub field: Field,
     pub functions: Option<Vec<Option<Vec<Option<ConceptRef>>>>>,
+}
+
+impl FieldData {
+    /// The values of a field of reals; a field of functions, which has none, is an error naming it
+    /// (`label`).
+    pub fn reals(&self, label: &str) -> Result<&Field> {
+        match self.functions {
+            None => Ok(&self.field),
+            Some(_) => Err(Error::runtime(format!(
+                "{label} is a field of functions: its values are known only where it is evaluated \
+                 (CREA_CHAMP OPERATION='EVAL', CREA_RESU); a field of reals is expected here"
+            ))),
+        }
+    }
 }
 
 /// One stored step of a result.

@@ -3,7 +3,7 @@
 
 use crate::catalog::args::{ArgValue, Args, Val};
 use crate::concepts::model::{CaraElem, MatValue, Material, MaterialField, Varc, VarcSource};
-use crate::concepts::ConceptData;
+use crate::concepts::{ConceptData, ConceptKind};
 use crate::diag::Result;
 use crate::fem::frame::Frame;
 use crate::stages::select::select_cells;
@@ -73,14 +73,13 @@ pub fn affe_materiau(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     Ok(Some(ConceptData::MaterialField(MaterialField { mesh, cells, varc })))
 }
 
-/// One occurrence of AFFE_VARC: the temperature (NOM_VARC='TEMP') from an EVOL_THER (its TEMP field) or
+/// One occurrence of AFFE_VARC: the temperature (NOM_VARC='TEMP') from an EVOL_THER or EVOL_VARC (its TEMP field) or
 /// a field on nodes; the other command variables stop by name.
 fn affe_varc(mesh: &crate::mesh::Mesh, occ: &Args, name: &str) -> Result<Varc> {
     let nom = occ.req_text("NOM_VARC")?.to_string();
     if nom != "TEMP" {
         return Err(occ.err("NOM_VARC", format!("NOM_VARC='{nom}' is not supported yet (TEMP is)")));
     }
-    occ.refuse(&["FONC_INST"])?;
     // Without TOUT, GROUP_MA or MAILLE, the variable is on every cell.
     let cells = if ["TOUT", "GROUP_MA", "MAILLE"].iter().any(|k| occ.has(k)) {
         select_cells(mesh, occ, name)?
@@ -89,17 +88,20 @@ fn affe_varc(mesh: &crate::mesh::Mesh, occ: &Args, name: &str) -> Result<Varc> {
     };
     let source = match (occ.concept("EVOL"), occ.concept("CHAM_GD")) {
         (Some(r), _) => {
-            if r.kind() != crate::concepts::ConceptKind::EvolTher {
-                return Err(occ.err("EVOL", format!("{} is not a thermal result (EVOL_THER)", r.label())));
+            if !matches!(r.kind(), ConceptKind::EvolTher | ConceptKind::EvolVarc) {
+                return Err(occ.err(
+                    "EVOL",
+                    format!("{} is an {}, not a temperature (EVOL_THER or EVOL_VARC)", r.label(), r.kind()),
+                ));
             }
             let field = occ.text("NOM_CHAM").unwrap_or("TEMP").to_string();
             if field != "TEMP" {
                 return Err(occ.err("NOM_CHAM", format!("NOM_CHAM='{field}' is not supported yet (TEMP is)")));
             }
-            VarcSource::Evol { result: r, field }
+            VarcSource::Evol { result: r, field, fonc_inst: occ.concept("FONC_INST") }
         }
         (None, Some(f)) => {
-            if f.kind() != crate::concepts::ConceptKind::ChamNo {
+            if f.kind() != ConceptKind::ChamNo {
                 return Err(occ.err("CHAM_GD", format!("{} is not a field on nodes (cham_no)", f.label())));
             }
             VarcSource::Field(f)

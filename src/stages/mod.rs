@@ -190,6 +190,7 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "MECA_STATIQUE" => solve::meca_statique,
         "CALC_CHAMP" => fields::calc_champ,
         "CREA_CHAMP" => fields::crea_champ,
+        "CREA_RESU" => fields::crea_resu,
         "STAT_NON_LINE" => solve::stat_non_line,
         "THER_LINEAIRE" => solve::ther_lineaire,
         "THER_NON_LINE" => solve::ther_non_line,

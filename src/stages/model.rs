@@ -27,6 +27,11 @@ fn z_quasi_zero(mesh: &crate::mesh::Mesh) -> bool {
 
 pub fn affe_modele(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     a.refuse(&["AFFE_SOUS_STRUC", "GRANDEUR_CARA"])?;
+    // DISTRIBUTION shares the cells among the MPI processes of a parallel run; a run of aster-rs is one
+    // process holding every cell, so the method and its partition change nothing it computes.
+    if let Some(d) = a.fact("DISTRIBUTION") {
+        d.read_all();
+    }
     let mc = a.req_concept("MAILLAGE")?;
     let mesh = mc.mesh()?;
     let name = mc.label();

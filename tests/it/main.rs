@@ -5,6 +5,7 @@
 mod common;
 
 mod fem;
+mod fields;
 mod heat;
 mod hm;
 mod language;

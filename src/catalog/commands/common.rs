@@ -10,6 +10,15 @@ use crate::kws;
 pub const FUNCS: &[ConceptKind] = &[ConceptKind::Fonction, ConceptKind::Nappe, ConceptKind::Formule];
 /// Results of mechanical and thermal computations.
 pub const RESULTS: &[ConceptKind] = &[ConceptKind::EvolElas, ConceptKind::EvolNoli, ConceptKind::EvolTher];
+/// Results whose fields are read as they are (tested, printed, extracted): those of computations and those
+/// CREA_RESU makes of fields (command variables, drying).
+pub const STORED_RESULTS: &[ConceptKind] = &[
+    ConceptKind::EvolElas,
+    ConceptKind::EvolNoli,
+    ConceptKind::EvolTher,
+    ConceptKind::EvolVarc,
+    ConceptKind::EvolSech,
+];
 pub const OUI_NON: &[&str] = &["OUI", "NON"];
 
 /// `CRITERE` (default RELATIF) and the `PRECISION` that goes with it, used to

@@ -1,4 +1,5 @@
-//! Fields: computed from results (CALC_CHAMP), of their own (CREA_CHAMP), in another frame (MODI_REPERE).
+//! Fields: computed from results (CALC_CHAMP), of their own (CREA_CHAMP), in another frame (MODI_REPERE);
+//! results made of fields (CREA_RESU).
 
 use super::common::*;
 use crate::catalog::args::Args;
@@ -374,7 +375,7 @@ fn crea_champ_extr() -> Bloc {
         kws![
             simp("MAILLAGE").co(&[ConceptKind::Maillage]),
             simp("FISSURE").co(&[ConceptKind::FissXfem]),
-            simp("RESULTAT").co(RESULTS),
+            simp("RESULTAT").co(STORED_RESULTS),
             simp("TABLE").co(&[ConceptKind::Table]),
             simp("CHARGE").co(&[ConceptKind::CharMeca]),
             bloc(
@@ -642,6 +643,116 @@ fn modi_repere() -> Command {
         .rules(vec![un_parmi(&["CHAM_GD", "RESULTAT"])])
 }
 
+// ------------------------------------------------------------------ CREA_RESU
+
+/// The results CREA_RESU makes (the other TYPE_RESU stop by name).
+const CREA_RESU_TYPES: &[(&str, ConceptKind)] = &[
+    ("EVOL_ELAS", ConceptKind::EvolElas),
+    ("EVOL_NOLI", ConceptKind::EvolNoli),
+    ("EVOL_THER", ConceptKind::EvolTher),
+    ("EVOL_VARC", ConceptKind::EvolVarc),
+    ("EVOL_SECH", ConceptKind::EvolSech),
+];
+
+/// CREA_RESU: TYPE_RESU decides the type of the result.
+fn crea_resu_type(a: &Args) -> Result<ConceptKind> {
+    let t = a.text("TYPE_RESU").ok_or_else(|| missing(a, "TYPE_RESU"))?;
+    CREA_RESU_TYPES.iter().find(|(n, _)| *n == t).map(|(_, k)| *k).ok_or_else(|| {
+        Error::unsupported(format!(
+            "CREA_RESU TYPE_RESU='{t}' is not supported yet (EVOL_ELAS, EVOL_NOLI, EVOL_THER, EVOL_VARC and \
+             EVOL_SECH are)"
+        ))
+        .at(a.span_of("TYPE_RESU"))
+    })
+}
+
+fn crea_resu() -> Command {
+    const EVOLS: &[ConceptKind] = &[
+        ConceptKind::EvolElas,
+        ConceptKind::EvolNoli,
+        ConceptKind::EvolTher,
+        ConceptKind::EvolVarc,
+        ConceptKind::EvolSech,
+    ];
+    const MECA: &[ConceptKind] = &[ConceptKind::CharMeca, ConceptKind::CharCineMeca];
+    let excit = |loads: &'static [ConceptKind], charge: &'static [&'static str]| {
+        let mut kw = kws![simp("CHARGE").co(loads).o(), simp("FONC_MULT").co(FUNCS)];
+        if !charge.is_empty() {
+            kw.push(simp("TYPE_CHARGE").txt().d("FIXE_CSTE").one_of(charge).into());
+        }
+        fact("EXCIT", kw).many()
+    };
+    let affe = |t: &'static str| and(vec![eq("OPERATION", "AFFE"), eq("TYPE_RESU", t)]);
+    Command::new("CREA_RESU", "Create or extend a result from fields.").produces_dyn(crea_resu_type).reuse().kw(kws![
+        simp("OPERATION").txt().o().one_of(&[
+            "AFFE",
+            "ASSE",
+            "PERM_CHAM",
+            "PROL_RTZ",
+            "PREP_VARC",
+            "KUCV",
+            "CONV_CHAR",
+            "CONV_RESU",
+        ]),
+        // The other types of Code_Aster's (MULT_ELAS, MODE_MECA, DYNA_TRANS, ...) stop here by name.
+        simp("TYPE_RESU").txt().o().one_of(&["EVOL_ELAS", "EVOL_NOLI", "EVOL_THER", "EVOL_VARC", "EVOL_SECH"]),
+        bloc(
+            eq("OPERATION", "AFFE"),
+            kws![
+                simp("RESULTAT").co(EVOLS),
+                fact(
+                    "AFFE",
+                    kws![
+                        simp("CHAM_GD").co(CHAM_GD).o(),
+                        simp("MODELE").co(&[ConceptKind::Modele]),
+                        simp("CHAM_MATER").co(&[ConceptKind::ChamMater]),
+                        simp("CARA_ELEM").co(&[ConceptKind::CaraElem]),
+                        simp("INST").r().many(),
+                        simp("LIST_INST").co(&[ConceptKind::ListR8]),
+                        simp("NUME_INIT").i().val_min(1.0),
+                        simp("NUME_FIN").i().val_min(1.0),
+                        simp("PRECISION").r().d(0.0),
+                        simp("CRITERE").txt().d("RELATIF").one_of(&["RELATIF", "ABSOLU"]),
+                        simp("NOM_CHAM").txt().o(),
+                    ]
+                )
+                .o()
+                .many()
+                .rules(vec![un_parmi(&["INST", "LIST_INST"])]),
+            ]
+        ),
+        bloc(affe("EVOL_ELAS"), kws![excit(MECA, &["FIXE_CSTE"])]),
+        bloc(affe("EVOL_THER"), kws![excit(&[ConceptKind::CharTher, ConceptKind::CharCineTher], &[])]),
+        bloc(affe("EVOL_NOLI"), kws![excit(MECA, &["FIXE_CSTE", "FIXE_PILO", "SUIV", "DIDI"])]),
+        bloc(
+            eq("OPERATION", "ASSE"),
+            kws![fact("ASSE", kws![simp("RESULTAT").co(&[ConceptKind::EvolTher]).o(), simp("TRANSLATION").r().d(0.0)])
+                .o()
+                .many()]
+        ),
+        bloc(
+            eq("OPERATION", "PROL_RTZ"),
+            kws![fact(
+                "PROL_RTZ",
+                kws![
+                    simp("MAILLAGE_FINAL").co(&[ConceptKind::Maillage]).o(),
+                    simp("TABLE").co(&[ConceptKind::Table]).o(),
+                    simp("INST").r().many(),
+                    simp("LIST_INST").co(&[ConceptKind::ListR8]),
+                    bloc(or(vec![present("INST"), present("LIST_INST")]), crit_prec()),
+                    simp("PROL_DROITE").txt().d("EXCLU").one_of(&["CONSTANT", "LINEAIRE", "EXCLU"]),
+                    simp("PROL_GAUCHE").txt().d("EXCLU").one_of(&["CONSTANT", "LINEAIRE", "EXCLU"]),
+                    simp("REPERE").txt().o().one_of(&["CYLINDRIQUE"]),
+                    simp("ORIGINE").r().min(3).max(3).o(),
+                    simp("AXE_Z").r().min(3).max(3).o(),
+                ]
+            )
+            .o()
+            .rules(vec![exclus(&["INST", "LIST_INST"])])]
+        ),
+    ])
+}
+
 pub fn commands() -> Vec<Command> {
-    vec![calc_champ(), crea_champ(), modi_repere()]
+    vec![calc_champ(), crea_champ(), crea_resu(), modi_repere()]
 }

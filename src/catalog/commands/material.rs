@@ -681,7 +681,7 @@ fn affe_materiau() -> Command {
                         "NEUT3", "PTOT", "DIVU",
                     ]),
                     simp("CHAM_GD").co(&[ConceptKind::ChamNo, ConceptKind::ChamElem, ConceptKind::Carte]),
-                    simp("EVOL").co(&[ConceptKind::EvolElas, ConceptKind::EvolNoli, ConceptKind::EvolTher]),
+                    simp("EVOL").co(&[ConceptKind::Evol]),
                     bloc(
                         present("EVOL"),
                         kws![

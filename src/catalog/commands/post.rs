@@ -63,7 +63,7 @@ fn post_releve_t() -> Command {
                     simp("OPERATION").txt().o().max(2).one_of(&["EXTRACTION", "MOYENNE", "MOYENNE_ARITH", "EXTREMA"]),
                     simp("INTITULE").txt().o(),
                     simp("CHAM_GD").co(&[ConceptKind::ChamNo, ConceptKind::ChamElem]),
-                    simp("RESULTAT").co(RESULTS),
+                    simp("RESULTAT").co(STORED_RESULTS),
                     bloc(present("RESULTAT"), extraction).rules(vec![exclus(&[
                         "TOUT_ORDRE",
                         "NUME_ORDRE",

@@ -62,7 +62,7 @@ fn impr_sources() -> Vec<Entry> {
     kws![
         simp("MAILLAGE").co(&[ConceptKind::Maillage]),
         simp("CHAM_GD").co(CHAM_GD),
-        simp("RESULTAT").co(RESULTS),
+        simp("RESULTAT").co(STORED_RESULTS),
         impr_extraction(),
     ]
 }

@@ -4,7 +4,7 @@
 //! (`driver`); Code_Aster's convergence keywords, instants and archiving (`newton`); SOLVEUR and the
 //! solver's log (`solver`); function evaluation at a point and time (`eval`); and the builders of the
 //! physics from concepts: the elastic problem (`problem`), the saturated HM one (`hm`) and heat conduction
-//! (`heat`).
+//! (`heat`); and what results made of stored fields share (`stored`: LIRE_RESU, CREA_RESU).
 
 pub mod driver;
 pub mod eval;
@@ -15,3 +15,4 @@ pub mod newton;
 pub mod problem;
 pub mod settings;
 pub mod solver;
+pub mod stored;

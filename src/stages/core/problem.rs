@@ -201,12 +201,20 @@ pub fn thermal_strain(chmat: &ConceptRef, p: &Problem) -> Result<Option<ThermalS
         }
         sources.push(match &v.source {
             VarcSource::Field(f) => {
-                let values = temp_of_field(&f.field()?.field, nnodes, &f.label())?;
+                let values = temp_of_field(f.field()?.reals(&f.label())?, nnodes, &f.label())?;
                 Box::new(move |_t| Ok(values.clone()))
             }
-            VarcSource::Evol { result, field } => {
-                let (result, field, prol) = (result.clone(), field.clone(), v.prol.clone());
-                Box::new(move |t| temp_of_result(&result, &field, &prol, t, nnodes))
+            VarcSource::Evol { result, field, fonc_inst } => {
+                let (result, field, prol, fonc) = (result.clone(), field.clone(), v.prol.clone(), fonc_inst.clone());
+                Box::new(move |t| {
+                    // FONC_INST: the result is read at the instant the function gives for the current one.
+                    let at = match &fonc {
+                        Some(f) => super::eval::eval_at(f, &[0.0; 3], t)
+                            .map_err(|e| Error::runtime(format!("AFFE_VARC/FONC_INST: {}", e.msg)))?,
+                        None => t,
+                    };
+                    temp_of_result(&result, &field, &prol, at, nnodes)
+                })
             }
         });
     }

@@ -14,54 +14,23 @@ use super::list_of;
 use crate::catalog::args::Args;
 use crate::concepts::model::Model;
 use crate::concepts::result::{Field, FieldData, ResultData, Step};
-use crate::concepts::{Concept, ConceptData, ConceptKind, ConceptRef};
+use crate::concepts::ConceptData;
 use crate::diag::Result;
 use crate::med::{self, cellfield::cells_by_type, Block, MedField, Support};
 use crate::mesh::Mesh;
 use crate::stages::core::hm::elga_points;
+use crate::stages::core::stored::{bare_model, excit_loads, Location as Kind};
 use crate::stages::Ctx;
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-/// The kind of field a Code_Aster field name (NOM_CHAM) or TYPE_CHAM location stands for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
-    Noeu,
-    Elno,
-    Elga,
-    Elem,
-}
-
-impl Kind {
-    fn of_symbol(sym: &str) -> Kind {
-        if sym.ends_with("_ELGA") {
-            Kind::Elga
-        } else if sym.ends_with("_ELNO") {
-            Kind::Elno
-        } else if sym.ends_with("_ELEM") {
-            Kind::Elem
-        } else {
-            Kind::Noeu
-        }
-    }
-
-    fn name(self) -> &'static str {
-        match self {
-            Kind::Noeu => "node (NOEU)",
-            Kind::Elno => "ELNO",
-            Kind::Elga => "ELGA",
-            Kind::Elem => "ELEM",
-        }
-    }
-
-    /// The MED support of blocks of this kind.
-    fn fits(self, b: &Block) -> bool {
-        match self {
-            Kind::Noeu => b.support == Support::Node,
-            Kind::Elno => b.support == Support::CellNode,
-            Kind::Elga => b.support == Support::Cell && b.localization.is_some(),
-            Kind::Elem => b.support == Support::Cell && b.localization.is_none() && b.per_entity == 1,
-        }
+/// Does block `b` of a MED field hold values of this kind of field?
+fn fits(kind: Kind, b: &Block) -> bool {
+    match kind {
+        Kind::Node => b.support == Support::Node,
+        Kind::Elno => b.support == Support::CellNode,
+        Kind::Elga => b.support == Support::Cell && b.localization.is_some(),
+        Kind::Elem => b.support == Support::Cell && b.localization.is_none() && b.per_entity == 1,
     }
 }
 
@@ -111,7 +80,7 @@ impl<'a> Target<'a> {
         let nco = components.len();
         let mesh = self.mesh;
         match kind {
-            Kind::Noeu => {
+            Kind::Node => {
                 let mut values = vec![if prol_zero { 0.0 } else { f64::NAN }; mesh.nnodes() * nco];
                 for b in blocks {
                     for (i, &n) in b.entities.iter().enumerate() {
@@ -228,18 +197,6 @@ fn steps_asked(ctx: &mut Ctx, a: &Args, f: &MedField, last: i64, rname: &str) ->
     Ok(out)
 }
 
-/// A model without elements on a mesh: the model of a result read with MAILLAGE only.
-fn bare_model(mesh_concept: &ConceptRef) -> Result<ConceptRef> {
-    let mesh = mesh_concept.mesh()?;
-    let model = Model {
-        mesh: mesh.clone(),
-        mesh_concept: mesh_concept.clone(),
-        elements: vec![None; mesh.ncells()],
-        xfem: None,
-    };
-    Ok(Concept::new(ConceptKind::Modele, ConceptData::Model(model)))
-}
-
 pub fn lire_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let format = a.req_text("FORMAT")?;
     if format != "MED" {
@@ -269,16 +226,7 @@ pub fn lire_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         None => (Vec::new(), None, Vec::new()),
     };
     let material = a.concept("CHAM_MATER").or(material);
-    for occ in a.facts("EXCIT") {
-        // A result holds its loads without multiplier: FONC_MULT and loads other than FIXE_CSTE would be lost.
-        occ.refuse(&["FONC_MULT"])?;
-        // EVOL_THER's occurrences have no TYPE_CHARGE.
-        let kind = occ.declares("TYPE_CHARGE").then(|| occ.text("TYPE_CHARGE")).flatten();
-        if let Some(t) = kind.filter(|t| *t != "FIXE_CSTE") {
-            return Err(occ.err("TYPE_CHARGE", format!("TYPE_CHARGE='{t}' is not supported yet (FIXE_CSTE is)")));
-        }
-        loads.push(occ.req_concept("CHARGE")?);
-    }
+    loads.extend(excit_loads(a)?);
     let last = steps.iter().map(|s| s.nume_ordre).max().unwrap_or(0);
     let mut report = String::new();
     for occ in a.facts("FORMAT_MED") {
@@ -299,7 +247,7 @@ pub fn lire_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let mut count = 0;
         for (order, time, i) in steps_asked(ctx, a, &f, last, &rname)? {
             let blocks: Vec<Block> =
-                f.steps[i].blocks.iter().filter(|b| kind.fits(b)).map(|b| pick(b, nco, &idx)).collect();
+                f.steps[i].blocks.iter().filter(|b| fits(kind, b)).map(|b| pick(b, nco, &idx)).collect();
             if blocks.is_empty() {
                 let there: Vec<String> = f.steps[i].blocks.iter().map(|b| format!("{:?}", b.support)).collect();
                 return Err(occ.err(
@@ -346,7 +294,7 @@ pub fn lire_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let _ = a.text("NOM_CMP_IDEM"); // the file's component names (the rule: this or NOM_CMP)
     let type_cham = a.req_text("TYPE_CHAM")?;
     let kind = match type_cham.split('_').next().unwrap_or("") {
-        "NOEU" => Kind::Noeu,
+        "NOEU" => Kind::Node,
         "ELNO" => Kind::Elno,
         "ELGA" => Kind::Elga,
         "ELEM" => Kind::Elem,
@@ -359,8 +307,8 @@ pub fn lire_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     };
     let model_c = a.concept("MODELE");
     match (kind, &model_c) {
-        (Kind::Noeu, Some(_)) => return Err(a.err("MODELE", "MODELE is for cell fields (TYPE_CHAM='EL...')")),
-        (Kind::Noeu, None) => {}
+        (Kind::Node, Some(_)) => return Err(a.err("MODELE", "MODELE is for cell fields (TYPE_CHAM='EL...')")),
+        (Kind::Node, None) => {}
         (_, None) => return Err(a.err("TYPE_CHAM", format!("a {type_cham} field needs MODELE"))),
         _ => {}
     }
@@ -414,7 +362,7 @@ pub fn lire_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         }
     };
     let nco = f.components.len();
-    let blocks: Vec<Block> = step.blocks.iter().filter(|b| kind.fits(b)).map(|b| pick(b, nco, &idx)).collect();
+    let blocks: Vec<Block> = step.blocks.iter().filter(|b| fits(kind, b)).map(|b| pick(b, nco, &idx)).collect();
     if blocks.is_empty() {
         return Err(a.err("TYPE_CHAM", format!("field '{name}' holds no {} values", kind.name())));
     }

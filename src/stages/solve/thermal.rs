@@ -43,7 +43,8 @@ fn run(ctx: &mut Ctx, a: &Args, command: Command) -> Result<Option<ConceptData>>
         (HeatInitial::Uniform(v), true) => vec![*v; n],
         (HeatInitial::Field(c), true) => {
             let f = c.field().map_err(|e| cfg.locate(e, "ETAT_INIT/CHAM_NO"))?;
-            p.temps_of(&f.field, &c.label()).map_err(|e| cfg.locate(e, "ETAT_INIT/CHAM_NO"))?
+            let field = f.reals(&c.label()).map_err(|e| cfg.locate(e, "ETAT_INIT/CHAM_NO"))?;
+            p.temps_of(field, &c.label()).map_err(|e| cfg.locate(e, "ETAT_INIT/CHAM_NO"))?
         }
         (HeatInitial::Step(rc, k), true) => {
             let r = rc.result().map_err(|e| cfg.locate(e, "ETAT_INIT/EVOL_THER"))?;

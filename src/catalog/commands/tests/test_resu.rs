@@ -132,7 +132,7 @@ pub fn commands() -> Vec<Command> {
     let resu = test_fact(
         "RESU",
         kws![
-            simp("RESULTAT").co(RESULTS).o(),
+            simp("RESULTAT").co(STORED_RESULTS).o(),
             simp("NUME_ORDRE").i(),
             simp("INST").r(),
             simp("FREQ").r(),

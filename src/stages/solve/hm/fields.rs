@@ -17,7 +17,9 @@ pub fn initial_state(cfg: &Settings, p: &HmProblem) -> Result<(Vec<f64>, Vec<Vec
     if let Some(e) = init {
         if let Some(c) = &e.depl {
             let fd = c.field().map_err(|er| cfg.err("ETAT_INIT/DEPL", er.msg))?;
-            let Field::Node { components, values } = &fd.field else {
+            let Field::Node { components, values } =
+                fd.reals(&c.label()).map_err(|er| cfg.err("ETAT_INIT/DEPL", er.msg))?
+            else {
                 return Err(cfg.err("ETAT_INIT/DEPL", format!("{} is not a nodal field (CHAM_NO)", c.label())));
             };
             let ncf = components.len();
@@ -43,10 +45,10 @@ pub fn initial_state(cfg: &Settings, p: &HmProblem) -> Result<(Vec<f64>, Vec<Vec
     let dim = p.kin.dim();
     if let Some(c) = &e.sigm {
         let fd = c.field().map_err(|er| cfg.err("ETAT_INIT/SIGM", er.msg))?;
+        let field = fd.reals(&c.label()).map_err(|er| cfg.err("ETAT_INIT/SIGM", er.msg))?;
         let sief = sief_components(dim);
         for ((cell_id, _), st) in p.elements().zip(states.iter_mut()) {
-            let Some(vals) = cell_values(&fd.field, cell_id, st.len()).map_err(|m| cfg.err("ETAT_INIT/SIGM", m))?
-            else {
+            let Some(vals) = cell_values(field, cell_id, st.len()).map_err(|m| cfg.err("ETAT_INIT/SIGM", m))? else {
                 continue;
             };
             let get = point_reader(fd.field.components(), &vals);
@@ -64,9 +66,9 @@ pub fn initial_state(cfg: &Settings, p: &HmProblem) -> Result<(Vec<f64>, Vec<Vec
     }
     if let Some(c) = &e.vari {
         let fd = c.field().map_err(|er| cfg.err("ETAT_INIT/VARI", er.msg))?;
+        let field = fd.reals(&c.label()).map_err(|er| cfg.err("ETAT_INIT/VARI", er.msg))?;
         for ((cell_id, cell), st) in p.elements().zip(states.iter_mut()) {
-            let Some(vals) = cell_values(&fd.field, cell_id, st.len()).map_err(|m| cfg.err("ETAT_INIT/VARI", m))?
-            else {
+            let Some(vals) = cell_values(field, cell_id, st.len()).map_err(|m| cfg.err("ETAT_INIT/VARI", m))? else {
                 continue;
             };
             let get = point_reader(fd.field.components(), &vals);
