@@ -292,8 +292,8 @@ pub enum LoadItem {
     NodalForce { node: usize, component: String, value: LoadValue },
     /// FORCE_CONTOUR / FORCE_FACE: a force per unit length/area on skin cells.
     SurfaceForce { cells: Vec<usize>, components: Vec<(String, LoadValue)> },
-    /// PRES_REP: a pressure on skin cells.
-    Pressure { cells: Vec<usize>, value: LoadValue },
+    /// PRES_REP: a pressure on skin cells, and in the plane a shear along them (CISA_2D).
+    Pressure { cells: Vec<usize>, value: LoadValue, shear: Option<LoadValue> },
     /// PRES_REP with FISSURE: a pressure on both lips of an X-FEM crack of the model (its index there).
     CrackPressure { crack: usize, name: String, value: LoadValue },
     /// PESANTEUR: gravity of magnitude `g` along `direction`, on the cells.

@@ -254,12 +254,16 @@ impl Physics for Elastic {
                             add(&dofs, &fe);
                         }
                     }
-                    Force::Pressure { cells, value } => {
+                    Force::Pressure { cells, value, shear } => {
                         for &c in cells.iter() {
                             let dofs = self.skin_dofs(name, c)?;
                             let xs = coords_of(mesh, c);
                             let pres: Vec<f64> = xs.iter().map(|x| value.at(x)).collect::<Result<_, _>>()?;
-                            let fe = elasticity::pressure_force(md, mesh.cell_types[c], &xs, &pres, None)
+                            let cisa: Option<Vec<f64>> = match shear {
+                                Some(s) => Some(xs.iter().map(|x| s.at(x)).collect::<Result<_, _>>()?),
+                                None => None,
+                            };
+                            let fe = elasticity::pressure_force(md, mesh.cell_types[c], &xs, &pres, cisa.as_deref())
                                 .map_err(|e| Error::runtime(e.to_string()))?;
                             add(&dofs, &fe);
                         }

@@ -73,8 +73,9 @@ pub enum Force<'a> {
     Nodal { node: usize, component: &'a str, value: Value<'a> },
     /// A force per unit measure on skin cells (FORCE_CONTOUR, FORCE_FACE): its components by name.
     Surface { cells: &'a [usize], components: Vec<(&'a str, Value<'a>)> },
-    /// A pressure on skin cells (PRES_REP).
-    Pressure { cells: &'a [usize], value: Value<'a> },
+    /// A pressure on skin cells (PRES_REP), and in the plane a shear along the tangent `(−n_y, n_x)`
+    /// (CISA_2D).
+    Pressure { cells: &'a [usize], value: Value<'a>, shear: Option<Value<'a>> },
     /// A pressure on both lips of an X-FEM crack of the model (PRES_REP with FISSURE): its index, its name.
     LipPressure { crack: usize, name: &'a str, value: Value<'a> },
     /// Gravity of magnitude `g` along `direction` on the cells (all of the model's when None).

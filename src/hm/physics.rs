@@ -290,7 +290,12 @@ impl Physics for HmProblem {
                             }
                         }
                     }
-                    Force::Pressure { cells, value } => {
+                    Force::Pressure { cells, value, shear } => {
+                        if shear.is_some() {
+                            return Err(Error::unsupported(format!(
+                                "load {name}: PRES_REP CISA_2D on a hydro-mechanical model is not supported yet"
+                            )));
+                        }
                         for &c in cells.iter() {
                             let dofs = self.skin_cell(name, c)?;
                             let xs = coords_of(mesh, c);

@@ -121,10 +121,12 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
         }
     }
     for occ in a.facts("PRES_REP") {
-        if occ.given("CISA_2D") {
-            return Err(occ.err("CISA_2D", "not supported yet"));
-        }
         if occ.given("FISSURE") {
+            if occ.given("CISA_2D") {
+                return Err(
+                    occ.err("CISA_2D", "a shear on the lips of a crack (CISA_2D with FISSURE) is not supported yet")
+                );
+            }
             // The lips of X-FEM cracks of the model: PRES pushes them apart.
             let value = occ.val("PRES").and_then(load_value).ok_or_else(|| occ.err("PRES", "PRES is required"))?;
             let xm = mo.model()?.xfem.clone();
@@ -142,8 +144,16 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
             continue;
         }
         let cells = select_cells(&mesh, occ, &name)?;
-        let value = occ.val("PRES").and_then(load_value).ok_or_else(|| occ.err("PRES", "PRES is required"))?;
-        items.push(LoadItem::Pressure { cells, value });
+        let shear = occ.val("CISA_2D").and_then(load_value);
+        if shear.is_some() && mo_dim(&mo)? != 2 {
+            return Err(occ.err("CISA_2D", "CISA_2D is for plane models"));
+        }
+        let value = match (occ.val("PRES").and_then(load_value), &shear) {
+            (Some(v), _) => v,
+            (None, Some(_)) => LoadValue::Real(0.0),
+            (None, None) => return Err(occ.err("PRES", "PRES or CISA_2D is required")),
+        };
+        items.push(LoadItem::Pressure { cells, value, shear });
     }
     for occ in a.facts("FLUX_THM_REP") {
         // FLUN is a heat flux and FLUN_HYDR2 the flux of a second fluid: neither has an equation in a

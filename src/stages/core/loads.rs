@@ -103,7 +103,11 @@ fn typed<'v>(name: String, functional: bool, items: &'v [LoadItem], t: f64, mult
                 cells,
                 components: components.iter().map(|(c, v)| (c.as_str(), value(v, t, mult))).collect(),
             }),
-            LoadItem::Pressure { cells, value: v } => forces.push(Force::Pressure { cells, value: value(v, t, mult) }),
+            LoadItem::Pressure { cells, value: v, shear } => forces.push(Force::Pressure {
+                cells,
+                value: value(v, t, mult),
+                shear: shear.as_ref().map(|s| value(s, t, mult)),
+            }),
             LoadItem::CrackPressure { crack, name, value: v } => {
                 forces.push(Force::LipPressure { crack: *crack, name, value: value(v, t, mult) })
             }

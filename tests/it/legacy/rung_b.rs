@@ -369,3 +369,42 @@ fn clamping_by_components_encastre_and_dnor_dtan_agree() {
     assert!(!status.success() && mess.contains("DTAN is for plane models"), "{mess}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// PRES_REP CISA_2D: the shear τ along the outward-turned edges of a square (its tangent `(−n_y, n_x)`, so
+/// −τ on BAS and HAUT, +τ on GAUCHE and DROITE) holds it in simple shear: with the bottom corners held
+/// (DX = DY = 0, and DY = 0), `u = (τ y / G, 0)` and σxy = τ everywhere.
+#[test]
+fn pres_rep_cisa_2d_shears_a_square() {
+    let dir = scratch!("cisa");
+    std::fs::create_dir_all(&dir).unwrap();
+    let (e, nu, tau) = (2.0e5, 0.3, 40.0);
+    let g = e / (2.0 * (1.0 + nu));
+    let ux = tau / g;
+    let comm = format!(
+        "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\
+         MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=(_F(NOM='O', INTERSEC=('BAS', 'GAUCHE')),\n\
+                         _F(NOM='P', INTERSEC=('BAS', 'DROITE')), _F(NOM='Q', INTERSEC=('HAUT', 'GAUCHE'))))\n\
+         MA = MODI_MAILLAGE(reuse=MA, MAILLAGE=MA, ORIE_PEAU=_F(GROUP_MA_PEAU=('BAS', 'DROITE', 'HAUT', 'GAUCHE')))\n\
+         MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='D_PLAN'))\n\
+         MAT = DEFI_MATERIAU(ELAS=_F(E={e:e}, NU={nu}))\n\
+         CM = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=MAT))\n\
+         CH = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=(_F(GROUP_NO='O', DX=0.0, DY=0.0), _F(GROUP_NO='P', DY=0.0)),\n\
+                             PRES_REP=(_F(GROUP_MA=('BAS', 'HAUT'), CISA_2D={m:e}), _F(GROUP_MA=('GAUCHE', 'DROITE'), CISA_2D={tau:e})))\n\
+         R = MECA_STATIQUE(MODELE=MO, CHAM_MATER=CM, EXCIT=_F(CHARGE=CH))\n\
+         R = CALC_CHAMP(reuse=R, RESULTAT=R, CONTRAINTE='SIGM_NOEU')\n\
+         TEST_RESU(RESU=(\n\
+           _F(RESULTAT=R, NUME_ORDRE=1, NOM_CHAM='DEPL', NOM_CMP='DX', GROUP_NO='Q', VALE_CALC={ux:e}, VALE_REFE={ux:e},\n\
+              REFERENCE='ANALYTIQUE', PRECISION=1e-9),\n\
+           _F(RESULTAT=R, NUME_ORDRE=1, NOM_CHAM='DEPL', NOM_CMP='DY', TYPE_TEST='MAX', VALE_CALC=0.0, VALE_REFE=0.0,\n\
+              REFERENCE='ANALYTIQUE', CRITERE='ABSOLU', PRECISION=1e-12),\n\
+           _F(RESULTAT=R, NUME_ORDRE=1, NOM_CHAM='SIGM_NOEU', NOM_CMP='SIXY', TYPE_TEST='MIN', VALE_CALC={tau:e},\n\
+              VALE_REFE={tau:e}, REFERENCE='ANALYTIQUE', PRECISION=1e-9),\n\
+           _F(RESULTAT=R, NUME_ORDRE=1, NOM_CHAM='SIGM_NOEU', NOM_CMP='SIXY', TYPE_TEST='MAX', VALE_CALC={tau:e},\n\
+              VALE_REFE={tau:e}, REFERENCE='ANALYTIQUE', PRECISION=1e-9)))\nFIN()\n",
+        m = -tau
+    );
+    let (status, mess, _) = run_on_box(&dir, ("QUAD8", "2,2", "1,1"), &comm);
+    assert!(status.success(), "{mess}");
+    assert_eq!(mess.lines().filter(|l| l.trim_start().starts_with("OK  ANALYTIQUE")).count(), 4, "{mess}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
