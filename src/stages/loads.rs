@@ -197,7 +197,24 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
         let terms = nodes.into_iter().zip(ddl).zip(coef).map(|((n, d), c)| (n, d, c)).collect();
         items.push(LoadItem::Relation { terms, value });
     }
-    Ok(Some(ConceptData::Load(Load { model: mo, items, functional })))
+    Ok(Some(ConceptData::Load(Load { model: mo, items: surcharge(items), functional })))
+}
+
+/// Code_Aster's rule of overloading within one load: a component of a node prescribed by several
+/// occurrences (DDL_IMPO, FACE_IMPO, TEMP_IMPO, ...) takes the value of the last one, as its field of
+/// prescribed values does (a later `nocart` overwrites an earlier one).
+pub fn surcharge(items: Vec<LoadItem>) -> Vec<LoadItem> {
+    let mut seen = std::collections::HashSet::new();
+    let mut kept: Vec<LoadItem> = items
+        .into_iter()
+        .rev()
+        .filter(|i| match i {
+            LoadItem::Dof { node, component, .. } => seen.insert((*node, component.clone())),
+            _ => true,
+        })
+        .collect();
+    kept.reverse();
+    kept
 }
 
 /// The node of each group of GROUP_NO, in order (LIAISON_DDL: one node per group).
@@ -369,7 +386,7 @@ fn char_cine(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
             }
         }
     }
-    Ok(Some(ConceptData::Load(Load { model: mo, items, functional })))
+    Ok(Some(ConceptData::Load(Load { model: mo, items: surcharge(items), functional })))
 }
 
 pub fn affe_char_meca(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {

@@ -123,7 +123,7 @@ fn affe_char_ther_any(a: &Args, functional: bool) -> Result<Option<ConceptData>>
         items.extend(liaison_group(&mesh, occ, &name)?);
     }
     drop(model);
-    Ok(Some(ConceptData::Load(Load { model: mo, items, functional })))
+    Ok(Some(ConceptData::Load(Load { model: mo, items: super::surcharge(items), functional })))
 }
 
 /// Only the temperature TEMP (TEMP_MIL, TEMP_INF, TEMP_SUP belong to shells, H1 to X-FEM).

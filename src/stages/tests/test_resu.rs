@@ -178,37 +178,52 @@ pub fn test_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let field = step.fields.get(cham).ok_or_else(|| {
             occ.err("NOM_CHAM", format!("result {name} has no field {cham} at order {}", step.nume_ordre))
         })?;
-        let cmp = occ.req_text("NOM_CMP")?;
-        let k = field.component(cmp).ok_or_else(|| {
-            occ.err(
-                "NOM_CMP",
-                format!("field {cham} has no component {cmp} (components: {})", field.components().join(", ")),
-            )
-        })?;
-        let (value, where_) = match occ.text("TYPE_TEST") {
-            Some(tt) => {
-                let vals = field.all_values(k);
+        // TYPE_TEST without NOM_CMP runs over every component of the field, as Code_Aster's.
+        let cmp_given = occ.text("NOM_CMP");
+        let (value, where_, cmp) = match (occ.text("TYPE_TEST"), cmp_given) {
+            (Some(tt), None) => {
+                let vals: Vec<f64> = (0..field.components().len()).flat_map(|k| field.all_values(k)).collect();
                 if vals.is_empty() {
-                    return Err(occ.err("TYPE_TEST", format!("field {cham} has no value of {cmp}")));
+                    return Err(occ.err("TYPE_TEST", format!("field {cham} has no value")));
                 }
-                let v = super::verdict::type_test(tt, &vals);
-                (v, format!("TYPE_TEST {tt}"))
+                (super::verdict::type_test(tt, &vals), format!("TYPE_TEST {tt}"), tt)
             }
-            None => {
-                let v = locate(field, k, &mesh, occ, &mesh_name)?;
-                let mut w = Vec::new();
-                for kw in ["NOEUD", "GROUP_NO", "MAILLE", "GROUP_MA"] {
-                    if let Some(t) = occ.text(kw) {
-                        w.push(format!("{kw} {t}"));
+            _ => {
+                let cmp = occ.req_text("NOM_CMP")?;
+                let k = field.component(cmp).ok_or_else(|| {
+                    occ.err(
+                        "NOM_CMP",
+                        format!("field {cham} has no component {cmp} (components: {})", field.components().join(", ")),
+                    )
+                })?;
+                match occ.text("TYPE_TEST") {
+                    Some(tt) => {
+                        let vals = field.all_values(k);
+                        if vals.is_empty() {
+                            return Err(occ.err("TYPE_TEST", format!("field {cham} has no value of {cmp}")));
+                        }
+                        (super::verdict::type_test(tt, &vals), format!("TYPE_TEST {tt}"), cmp)
+                    }
+                    None => {
+                        let v = locate(field, k, &mesh, occ, &mesh_name)?;
+                        let mut w = Vec::new();
+                        for kw in ["NOEUD", "GROUP_NO", "MAILLE", "GROUP_MA"] {
+                            if let Some(t) = occ.text(kw) {
+                                w.push(format!("{kw} {t}"));
+                            }
+                        }
+                        if let Some(p) = occ.declares("POINT").then(|| occ.int("POINT")).flatten() {
+                            w.push(format!("POINT {p}"));
+                        }
+                        (v, w.join(" "), cmp)
                     }
                 }
-                if let Some(p) = occ.declares("POINT").then(|| occ.int("POINT")).flatten() {
-                    w.push(format!("POINT {p}"));
-                }
-                (v, w.join(" "))
             }
         };
-        let title = format!("RESULTAT {name} NUME_ORDRE {} NOM_CHAM {cham} NOM_CMP {cmp} {where_}", step.nume_ordre);
+        let title = match cmp_given {
+            Some(c) => format!("RESULTAT {name} NUME_ORDRE {} NOM_CHAM {cham} NOM_CMP {c} {where_}", step.nume_ordre),
+            None => format!("RESULTAT {name} NUME_ORDRE {} NOM_CHAM {cham} {where_}", step.nume_ordre),
+        };
         check(ctx, occ, Scalar::R(value), cmp, &title)?;
     }
     Ok(None)

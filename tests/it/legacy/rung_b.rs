@@ -408,3 +408,27 @@ fn pres_rep_cisa_2d_shears_a_square() {
     assert_eq!(mess.lines().filter(|l| l.trim_start().starts_with("OK  ANALYTIQUE")).count(), 4, "{mess}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Code_Aster's overloading rule within one load: a node's component prescribed by several occurrences
+/// takes the last value (DDL_IMPO on BAS, then DX again on its corner); and TYPE_TEST without NOM_CMP runs
+/// over every component.
+#[test]
+fn the_last_occurrence_prescribing_a_component_wins() {
+    let dir = scratch!("surcharge");
+    std::fs::create_dir_all(&dir).unwrap();
+    let comm = "DEBUT()\nMA = LIRE_MAILLAGE(FORMAT='MED', UNITE=20)\n\
+         MA = DEFI_GROUP(reuse=MA, MAILLAGE=MA, CREA_GROUP_NO=_F(NOM='O', INTERSEC=('BAS', 'GAUCHE')))\n\
+         MO = AFFE_MODELE(MAILLAGE=MA, AFFE=_F(TOUT='OUI', PHENOMENE='MECANIQUE', MODELISATION='D_PLAN'))\n\
+         MAT = DEFI_MATERIAU(ELAS=_F(E=2.0e5, NU=0.3))\n\
+         CM = AFFE_MATERIAU(MAILLAGE=MA, AFFE=_F(TOUT='OUI', MATER=MAT))\n\
+         CH = AFFE_CHAR_MECA(MODELE=MO, DDL_IMPO=(_F(GROUP_NO='BAS', DX=0.0, DY=0.0), _F(GROUP_NO='O', DX=1.0e-3)))\n\
+         R = MECA_STATIQUE(MODELE=MO, CHAM_MATER=CM, EXCIT=_F(CHARGE=CH))\n\
+         TEST_RESU(RESU=(_F(RESULTAT=R, NUME_ORDRE=1, NOM_CHAM='DEPL', NOM_CMP='DX', GROUP_NO='O', VALE_CALC=1.0e-3,\n\
+                            VALE_REFE=1.0e-3, REFERENCE='ANALYTIQUE', PRECISION=1e-12),\n\
+                         _F(RESULTAT=R, NUME_ORDRE=1, NOM_CHAM='DEPL', TYPE_TEST='MAX', VALE_CALC=1.0e-3,\n\
+                            VALE_REFE=1.0e-3, REFERENCE='ANALYTIQUE', PRECISION=1e-12)))\nFIN()\n";
+    let (status, mess, _) = run_on_box(&dir, ("QUAD4", "2,2", "1,1"), comm);
+    assert!(status.success(), "{mess}");
+    assert_eq!(mess.lines().filter(|l| l.trim_start().starts_with("OK  ANALYTIQUE")).count(), 2, "{mess}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
