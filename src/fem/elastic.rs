@@ -110,6 +110,12 @@ impl Elastic {
         })
     }
 
+    /// The same physics, storing SIEF_ELGA with DEPL or not.
+    pub fn storing_stresses(mut self, sief: bool) -> Elastic {
+        self.sief = sief;
+        self
+    }
+
     /// The same physics with a thermal strain.
     pub fn with_thermal(mut self, thermal: ThermalStrain) -> Elastic {
         self.thermal = Some(thermal);

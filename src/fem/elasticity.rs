@@ -519,7 +519,7 @@ pub fn stiffness(
 /// The B matrix rows of node `a` at a Gauss point (engineering shear):
 /// `b[c][i]` = contribution of displacement component `i` of node `a` to
 /// strain component `c`.
-fn b_node(m: Modelisation, g: &GaussGeom, a: usize) -> [[f64; 3]; 6] {
+pub fn b_node(m: Modelisation, g: &GaussGeom, a: usize) -> [[f64; 3]; 6] {
     let d = g.dn[a];
     let mut b = [[0.0; 3]; 6];
     b[0][0] = d[0];

@@ -11,6 +11,8 @@ pub mod field;
 pub mod frame;
 pub mod geometry;
 pub mod physics;
+pub mod plastic;
+pub mod plasticity;
 pub mod postpro;
 pub mod quadrature;
 pub mod reference;

@@ -127,9 +127,17 @@ impl Force<'_> {
 pub struct StepInfo {
     pub t0: f64,
     pub t1: f64,
+    /// The assembly of the prediction ([`Prediction::Tangent`]: Code_Aster's `RIGI_MECA_TANG`), at the
+    /// state of the step's start: a law whose tangent there depends on its history uses it.
+    pub predict: bool,
 }
 
 impl StepInfo {
+    /// The step from `t0` to `t1` (not the prediction).
+    pub fn new(t0: f64, t1: f64) -> StepInfo {
+        StepInfo { t0, t1, predict: false }
+    }
+
     pub fn dt(&self) -> f64 {
         self.t1 - self.t0
     }

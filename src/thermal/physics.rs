@@ -845,7 +845,7 @@ mod tests {
     fn steady_flux_gives_the_linear_profile() {
         let (p, left, _) = problem(4, None);
         let skin = [p.mesh.cells.len() - 1];
-        let step = StepInfo { t0: 0.0, t1: 0.0 };
+        let step = StepInfo::new(0.0, 0.0);
         let loads = vec![Load {
             name: "CH".into(),
             functional: false,
@@ -884,7 +884,7 @@ mod tests {
     fn a_uniform_state_is_at_rest() {
         let (p, _, _) = problem(3, Some(0.57));
         let x = vec![7.0; p.unknowns()];
-        let step = StepInfo { t0: 0.0, t1: 0.5 };
+        let step = StepInfo::new(0.0, 0.5);
         let mut fint = vec![0.0; p.unknowns()];
         let st = p.assemble(&step, &x, &p.state(&x), None, &mut fint).expect("assembly");
         assert!(fint.iter().all(|g| g.abs() < 1e-12), "{fint:?}");

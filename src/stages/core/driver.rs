@@ -125,7 +125,7 @@ impl<'a, P: Physics> Driver<'a, P> {
     /// Start the relative criterion's memory from a state (ETAT_INIT's reactions are the reference force
     /// of the earlier computation).
     pub fn remember_reference(&self, t: f64, x: &[f64], state: &P::State) -> Result<()> {
-        let step = StepInfo { t0: t, t1: t };
+        let step = StepInfo::new(t, t);
         let cons = self.loads.conditions(self.phys, t)?;
         let fext = self.loads.forces(self.phys, &step, x)?;
         let map = DofMap::build(x.len(), &zero(&cons)).map_err(|e| self.cfg.err("EXCIT", e.to_string()))?;
@@ -181,7 +181,8 @@ impl<'a, P: Physics> Driver<'a, P> {
     }
 
     /// Tangent (when `tangent`: else a correction solves with the matrix held) and residual of the state
-    /// `x` over the step from the laws' state `prev`, reduced by `map`.
+    /// `x` over the step from the laws' state `prev`, reduced by `map`; `predict` for the prediction's.
+    #[allow(clippy::too_many_arguments)]
     fn assemble(
         &self,
         fr: &Frame,
@@ -189,12 +190,14 @@ impl<'a, P: Physics> Driver<'a, P> {
         x: &[f64],
         prev: &P::State,
         tangent: bool,
+        predict: bool,
         log: &mut StepLog,
     ) -> std::result::Result<Assembled<P::State>, Failure> {
         let started = std::time::Instant::now();
         let mut asm = tangent.then(|| Assembler::new(map, fr.pattern.clone()));
         let mut fint = vec![0.0; x.len()];
-        let state = self.internal(&fr.step, x, prev, asm.as_mut(), &mut fint)?;
+        let step = StepInfo { predict, ..fr.step };
+        let state = self.internal(&step, x, prev, asm.as_mut(), &mut fint)?;
         let r: Vec<f64> = fr.fext.iter().zip(&fint).map(|(f, g)| f - g).collect();
         let (k, rhs) = match asm {
             Some(mut asm) => {
@@ -480,7 +483,7 @@ impl<'a, P: Physics> Driver<'a, P> {
             })
             .map_err(Failure::Fatal)?;
         let n = self.phys.unknowns();
-        let step = StepInfo { t0, t1 };
+        let step = StepInfo::new(t0, t1);
         let cons = self.loads.conditions(self.phys, t1)?;
         let fext = self.loads.forces(self.phys, &step, x)?;
         // The increments the conditions prescribe from the current state, then none.
@@ -505,7 +508,7 @@ impl<'a, P: Physics> Driver<'a, P> {
                 // right-hand side.
                 let map_pred = DofMap::build(n, &incr)
                     .map_err(|e| self.cfg.err("EXCIT", format!("incompatible kinematic conditions: {e}")))?;
-                let pred = self.assemble(&fr, &map_pred, x, state, true, log)?;
+                let pred = self.assemble(&fr, &map_pred, x, state, true, true, log)?;
                 let k = pred.k.expect("assembled with its tangent");
                 let k = if modified { Matrix::Hold(k) } else { Matrix::Once(k) };
                 let dx = self.factor_solve(&map_pred, k, pred.rhs, t1, log)?;
@@ -528,7 +531,7 @@ impl<'a, P: Physics> Driver<'a, P> {
             // The correction this assembly serves (the prediction was the first).
             let next = iters + usize::from(predicted);
             let fresh = !held || (reac > 0 && next % reac == 0);
-            let Assembled { k, rhs, fint, state: trial } = self.assemble(&fr, &map, &unew, state, fresh, log)?;
+            let Assembled { k, rhs, fint, state: trial } = self.assemble(&fr, &map, &unew, state, fresh, false, log)?;
             let (rel, abs, reference, vanished) = self.residual(&map, &free, &fr, &x0, &unew, &fint, &trial);
             history.push(rel);
             let solved = predicted || iters > 0;

@@ -1,12 +1,14 @@
 //! The checked elastic problem of a model and material field: modelisation, bulk cells, materials, dof numbering.
 
 use super::settings::Settings;
-use crate::concepts::model::{Material, MaterialField, Role, VarcSource};
+use crate::concepts::model::{MatValue, Material, MaterialField, Role, VarcSource};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
 use crate::fem::dofs::DofNumbering;
 use crate::fem::elastic::{Elastic, NodalTemperature, ThermalStrain};
 use crate::fem::elasticity::{IsoElastic, Modelisation};
+use crate::fem::plastic::Plastic;
+use crate::fem::plasticity::{Beyond, Hardening, VonMises};
 use crate::mesh::Mesh;
 use std::rc::Rc;
 /// a formula of no parameter). None when the parameter is not given.
@@ -87,6 +89,66 @@ pub fn elastic_of(m: &Material, cell: &str) -> Result<(IsoElastic, f64)> {
     };
     let rho = mat_param(m, beh, "RHO", cell)?.unwrap_or(0.0);
     Ok((law, rho))
+}
+
+/// The plastic behaviours the mechanics computes (COMPORTEMENT RELATION), besides ELAS.
+pub const PLASTIC_RELATIONS: &[&str] = &["VMIS_ISOT_LINE", "VMIS_ISOT_TRAC"];
+
+/// The law of COMPORTEMENT's `relation` (ELAS or one of [`PLASTIC_RELATIONS`]) on a cell of material `m`:
+/// E and NU from ELAS; ECRO_LINE (or ECRO_LINE_FO, constant) for VMIS_ISOT_LINE; TRACTION's curve SIGM for
+/// VMIS_ISOT_TRAC, whose first point gives the yield stress and the Young modulus the law uses, as
+/// Code_Aster's `rctrac` does.
+pub fn von_mises_of(m: &Material, relation: &str, cell: &str) -> Result<VonMises> {
+    let (elastic, _) = elastic_of(m, cell)?;
+    if !elastic.is_isotropic() {
+        return Err(Error::unsupported(format!(
+            "cell {cell}: RELATION='{relation}' on an anisotropic elastic material is not supported yet"
+        )));
+    }
+    let (e, nu) = (elastic.e, elastic.nu);
+    let need = |beh: &str, p: &str| -> Result<f64> {
+        mat_param(m, beh, p, cell)?
+            .ok_or_else(|| Error::runtime(format!("cell {cell}: RELATION='{relation}' needs {beh}/{p}")))
+    };
+    let lib = |msg: String| Error::runtime(format!("cell {cell}: {msg}"));
+    match relation {
+        "ELAS" => Ok(VonMises { e, nu, hardening: None }),
+        "VMIS_ISOT_LINE" => {
+            let beh = if m.behaviours.contains_key("ECRO_LINE") { "ECRO_LINE" } else { "ECRO_LINE_FO" };
+            if !m.behaviours.contains_key(beh) {
+                return Err(Error::runtime(format!(
+                    "cell {cell}: RELATION='VMIS_ISOT_LINE' needs ECRO_LINE (D_SIGM_EPSI, SY) in the material"
+                )));
+            }
+            let h = Hardening::linear(e, need(beh, "D_SIGM_EPSI")?, need(beh, "SY")?).map_err(lib)?;
+            Ok(VonMises { e, nu, hardening: Some(h) })
+        }
+        "VMIS_ISOT_TRAC" => {
+            let Some(MatValue::Func(c)) = m.behaviours.get("TRACTION").and_then(|b| b.get("SIGM")) else {
+                return Err(Error::runtime(format!(
+                    "cell {cell}: RELATION='VMIS_ISOT_TRAC' needs TRACTION (SIGM) in the material"
+                )));
+            };
+            let data = c.data();
+            let ConceptData::Function(f) = &*data else {
+                return Err(Error::unsupported(format!(
+                    "cell {cell}: TRACTION/SIGM {} ({}) is not a function of EPSI: traction curves depending \
+                     on another variable are not supported yet",
+                    c.label(),
+                    c.kind()
+                )));
+            };
+            use crate::concepts::function::Prol;
+            let beyond = match f.prol_droite {
+                Prol::Exclu => Beyond::Error,
+                Prol::Constant => Beyond::Constant,
+                Prol::Lineaire => Beyond::Linear,
+            };
+            let (h, e_curve) = Hardening::traction(&f.x, &f.y, beyond).map_err(lib)?;
+            Ok(VonMises { e: e_curve, nu, hardening: Some(h) })
+        }
+        other => Err(Error::unsupported(format!("RELATION='{other}' is not supported yet"))),
+    }
 }
 
 /// What a linear elastic computation is built from, checked.
@@ -171,6 +233,47 @@ pub fn elastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Elastic> {
         Some(t) => e.with_thermal(t),
         None => e,
     })
+}
+
+/// The plastic physics of STAT_NON_LINE's model and material field: the elastic problem (its unknowns and
+/// loads) with the law of COMPORTEMENT's relation on every bulk cell (the occurrences apply in their
+/// order, a later one over an earlier one).
+pub fn plastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Plastic> {
+    if super::settings::has_varc(chmat) {
+        return Err(cfg.err("CHAM_MATER", "AFFE_VARC with a plastic behaviour is not supported yet"));
+    }
+    let e = elastic(cfg, chmat)?.storing_stresses(false);
+    let mut laws: Vec<Option<VonMises>> = vec![None; e.mesh.cells.len()];
+    // COMPORTEMENT applies to the whole model (the settings refuse it on part of it).
+    let relation = cfg.behaviours.last().map_or("ELAS", |b| b.relation.as_str());
+    {
+        let data = chmat.data();
+        let ConceptData::MaterialField(MaterialField { cells, .. }) = &*data else {
+            return Err(cfg.err("CHAM_MATER", format!("{} holds no material field", chmat.label())));
+        };
+        let mut cache: Vec<((*const crate::concepts::Concept, String), VonMises)> = Vec::new();
+        for &c in &e.bulk {
+            let mc = cells[c].as_ref().expect("the elastic problem checked every bulk cell's material");
+            let key = (Rc::as_ptr(mc), relation.to_string());
+            let law = match cache.iter().find(|(k, _)| *k == key) {
+                Some((_, l)) => l.clone(),
+                None => {
+                    let md = mc.data();
+                    let ConceptData::Material(mat) = &*md else { unreachable!("AFFE_MATERIAU holds materials") };
+                    let l = von_mises_of(mat, relation, &e.mesh.cell_names[c]).map_err(|err| {
+                        let b = cfg.behaviours.last().expect("a plastic relation was given");
+                        b.err("RELATION", err.msg)
+                    })?;
+                    cache.push((key, l.clone()));
+                    l
+                }
+            };
+            laws[c] = Some(law);
+        }
+    }
+    let mut relations: Vec<String> = cfg.behaviours.iter().map(|b| format!("'{}'", b.relation)).collect();
+    relations.dedup();
+    Plastic::new(e, &laws, relations.join(", ")).map_err(|err| err.at(cfg.span))
 }
 
 /// The thermal strain of the material field's AFFE_VARC (NOM_VARC='TEMP') on the problem's bulk cells:

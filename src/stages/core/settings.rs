@@ -113,22 +113,13 @@ struct Takes {
 }
 
 /// STAT_NON_LINE keywords no physics implements yet.
-const NOT_YET: &[&str] = &[
-    "SOUS_STRUC",
-    "RECH_LINEAIRE",
-    "PILOTAGE",
-    "OBSERVATION",
-    "SUIVI_DDL",
-    "CRIT_QUALITE",
-    "ENERGIE",
-    "CRIT_STAB",
-    "RESULTAT",
-];
+const NOT_YET: &[&str] =
+    &["SOUS_STRUC", "PILOTAGE", "OBSERVATION", "SUIVI_DDL", "CRIT_QUALITE", "ENERGIE", "CRIT_STAB", "RESULTAT"];
 
 impl PhysicsKind {
     fn takes(self) -> Takes {
         match self {
-            PhysicsKind::Elastic => Takes { keywords: &["ARCHIVAGE"], etat_init: &[] },
+            PhysicsKind::Elastic => Takes { keywords: &["ARCHIVAGE", "RECH_LINEAIRE"], etat_init: &[] },
             PhysicsKind::Hm => Takes {
                 keywords: &["ETAT_INIT", "ARCHIVAGE", "SCHEMA_THM"],
                 etat_init: &["DEPL", "SIGM", "VARI", "CRITERE", "PRECISION"],
@@ -222,8 +213,10 @@ impl Settings {
             a.refuse(&["CARA_ELEM", "SENSIBILITE", "RESULTAT", "INST_FIN"])?;
         } else {
             a.refuse(NOT_YET)?;
-            let refused: Vec<&str> =
-                ["ETAT_INIT", "SCHEMA_THM", "CONTACT"].into_iter().filter(|k| !takes.keywords.contains(k)).collect();
+            let refused: Vec<&str> = ["ETAT_INIT", "SCHEMA_THM", "CONTACT", "RECH_LINEAIRE"]
+                .into_iter()
+                .filter(|k| !takes.keywords.contains(k))
+                .collect();
             a.refuse(&refused)?;
             if a.text("METHODE").is_some_and(|m| m != "NEWTON") {
                 return Err(a.err("METHODE", "only METHODE='NEWTON' is supported yet"));
@@ -302,6 +295,7 @@ impl Settings {
             (super::newton::instants_from(a, init_inst)?, super::newton::subdivision(a))
         };
         let archive = if statics { None } else { Some(Archive::from_args(a, &times)?) };
+        let line_search = if takes.keywords.contains(&"RECH_LINEAIRE") && !statics { line_search(a)? } else { None };
         Ok(Settings {
             command,
             physics,
@@ -323,7 +317,7 @@ impl Settings {
             schema_thm,
             contact,
             sief,
-            line_search: None,
+            line_search,
             reac_iter: 1,
             heat: None,
         })
@@ -454,6 +448,24 @@ fn initial_step(e: &Args, rc: &ConceptRef, s: &InitialState, model: &ConceptRef)
             .ok_or_else(|| e.err("EVOL_NOLI", format!("{} is empty", rc.label())))?
     };
     Ok((step.nume_ordre, step.inst))
+}
+
+/// STAT_NON_LINE's RECH_LINEAIRE on mechanics: METHODE='CORDE' (the default; the others stop by name),
+/// along every Newton correction after the prediction, as Code_Aster's `nmdepl` does. None without it or
+/// with ITER_LINE_MAXI=0.
+fn line_search(a: &Args) -> Result<Option<LineSearch>> {
+    let Some(rl) = a.fact("RECH_LINEAIRE") else { return Ok(None) };
+    if let Some(m) = rl.text("METHODE").filter(|m| *m != "CORDE") {
+        return Err(rl.err("METHODE", format!("METHODE='{m}' is not supported yet (CORDE is)")));
+    }
+    let ls = LineSearch {
+        resi: rl.real("RESI_LINE_RELA").unwrap_or(0.1),
+        iter_max: rl.int("ITER_LINE_MAXI").unwrap_or(3).max(0) as usize,
+        rho_min: rl.real("RHO_MIN").unwrap_or(1e-2),
+        rho_max: rl.real("RHO_MAX").unwrap_or(10.0),
+        rho_excl: rl.real("RHO_EXCL").unwrap_or(0.9e-2),
+    };
+    Ok((ls.iter_max > 0).then_some(ls))
 }
 
 /// COMPORTEMENT, typed; the controls of the local integration are read here: the laws we compute

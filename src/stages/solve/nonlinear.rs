@@ -1,5 +1,6 @@
 //! STAT_NON_LINE: one entry for every physics. The settings choose the physics from the model: linear
-//! elasticity (COMPORTEMENT RELATION='ELAS', here on the core's driver), saturated HM (`hm`), an X-FEM
+//! elasticity (COMPORTEMENT RELATION='ELAS') and von Mises plasticity (VMIS_ISOT_LINE, VMIS_ISOT_TRAC),
+//! here on the core's driver, saturated HM (`hm`), an X-FEM
 //! model (`xfem`).
 
 use crate::catalog::args::Args;
@@ -8,7 +9,7 @@ use crate::concepts::ConceptData;
 use crate::diag::Result;
 use crate::fem::physics::Physics;
 use crate::stages::core::driver::{Driver, StepLog};
-use crate::stages::core::problem::elastic;
+use crate::stages::core::problem::{elastic, plastic, PLASTIC_RELATIONS};
 use crate::stages::core::settings::{Command, PhysicsKind, Settings};
 use crate::stages::core::solver::peak_memory;
 use crate::stages::Ctx;
@@ -22,16 +23,32 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         PhysicsKind::Thermal => unreachable!("the settings refuse a thermal model in STAT_NON_LINE"),
     }
     for b in &cfg.behaviours {
-        if b.relation != "ELAS" {
+        if b.relation != "ELAS" && !PLASTIC_RELATIONS.contains(&b.relation.as_str()) {
             return Err(b.err("RELATION", format!("RELATION='{}' is not supported yet", b.relation)));
         }
     }
     let chmat = cfg.chmat()?;
-    let p = elastic(&cfg, &chmat)?;
-    let mut u = vec![0.0; p.unknowns()];
-    let mut t0 = cfg.times[0];
+    let plasticity = cfg.behaviours.iter().any(|b| b.relation != "ELAS");
     let mut log = StepLog::default();
-    let steps = Driver::new(&cfg, &p, cfg.solveur.opts).run(&mut u, &mut t0, true, &mut log)?;
+    let (steps, describe, unknowns) = if plasticity {
+        let p = plastic(&cfg, &chmat)?;
+        let mut u = vec![0.0; p.unknowns()];
+        let mut state = p.initial_state();
+        let steps = Driver::new(&cfg, &p, cfg.solveur.opts).run(&mut u, &mut state, true, &mut log)?;
+        (steps, p.describe(), p.unknowns())
+    } else {
+        let p = elastic(&cfg, &chmat)?;
+        let mut u = vec![0.0; p.unknowns()];
+        let mut t0 = cfg.times[0];
+        let steps = Driver::new(&cfg, &p, cfg.solveur.opts).run(&mut u, &mut t0, true, &mut log)?;
+        (steps, p.describe(), p.unknowns())
+    };
+    let line = cfg.line_search.map_or(String::new(), |ls| {
+        format!(
+            "    RECH_LINEAIRE (CORDE): RESI_LINE_RELA {}, ITER_LINE_MAXI {}, ρ in [{}, {}]\n",
+            ls.resi, ls.iter_max, ls.rho_min, ls.rho_max
+        )
+    });
     let note = cfg.newton_note.clone().map(|n| n + "\n").unwrap_or_default();
     let solver = log.last_solve.as_ref().map_or(String::new(), |(info, _, _)| {
         format!(
@@ -42,12 +59,8 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         )
     });
     ctx.io.mess(&format!(
-        "  STAT_NON_LINE ({}): {} unknowns, {} steps, {} Newton iterations in all:\n{note}{}{solver}",
-        p.describe(),
-        p.unknowns(),
-        log.steps,
-        log.iterations,
-        log.table
+        "  STAT_NON_LINE ({}): {} unknowns, {} steps, {} Newton iterations in all:\n{note}{line}{}{solver}",
+        describe, unknowns, log.steps, log.iterations, log.table
     ));
     Ok(Some(ConceptData::Result(ResultData {
         model: cfg.model.clone(),

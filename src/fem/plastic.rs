@@ -1,0 +1,261 @@
+//! Small-strain plasticity as a [`Physics`]: the elastic problem's unknowns, loads and kinematics
+//! ([`Elastic`]), with a law per bulk cell ([`VonMises`]: elastic, or von Mises with isotropic hardening)
+//! integrated at the cell's `RIGI` points. The state is the laws' state at every point; the fields are
+//! DEPL, SIEF_ELGA and VARI_ELGA (`V1` the cumulated plastic strain, `V2` the plastic indicator).
+
+use super::assembly::{Assembler, ElementDofs};
+use super::dofs::Constraints;
+use super::elastic::{coords_of, Elastic};
+use super::elasticity::{self, GaussGeom, Modelisation};
+use super::field::Field;
+use super::physics::{Failure, Load, Physics, Prediction, StepInfo};
+use super::plasticity::{Kind, PointState, Request, VonMises};
+use crate::diag::Error;
+
+/// The components of VARI_ELGA of the von Mises laws.
+pub const VARI_NAMES: [&str; 2] = ["V1", "V2"];
+
+/// The plastic problem of a model.
+pub struct Plastic {
+    pub elastic: Elastic,
+    /// Per bulk cell (in the order of `elastic.bulk`): its law and its points' geometry.
+    laws: Vec<VonMises>,
+    points: Vec<Vec<GaussGeom>>,
+    dofs: ElementDofs,
+    kind: Kind,
+    /// The relations, for the run log.
+    relations: String,
+}
+
+/// The laws' state: per bulk cell, per point.
+pub type State = Vec<Vec<PointState>>;
+
+impl Plastic {
+    /// The physics of `elastic`'s model with `laws[c]` on each mesh cell `c` of its bulk (`relations`
+    /// names them for the log).
+    pub fn new(elastic: Elastic, laws: &[Option<VonMises>], relations: String) -> Result<Plastic, Error> {
+        let md = elastic.modelisation;
+        let mesh = &elastic.mesh;
+        let mut out_laws = Vec::with_capacity(elastic.bulk.len());
+        let mut points = Vec::with_capacity(elastic.bulk.len());
+        for &c in &elastic.bulk {
+            let law = laws[c]
+                .clone()
+                .ok_or_else(|| Error::runtime(format!("cell {} of the model has no behaviour", mesh.cell_names[c])))?;
+            let t = mesh.cell_types[c];
+            let rule = elasticity::rigi_rule_of(md, t);
+            let g = elasticity::gauss_geometry(md, t, &coords_of(mesh, c), &rule)
+                .map_err(|e| Error::runtime(format!("cell {}: {e}", mesh.cell_names[c])))?;
+            out_laws.push(law);
+            points.push(g);
+        }
+        let kind = match md {
+            Modelisation::ThreeD => Kind::Solid,
+            Modelisation::CPlan => Kind::PlaneStress,
+            Modelisation::DPlan | Modelisation::Axis => Kind::Plane,
+        };
+        let dofs = elastic.element_dofs();
+        Ok(Plastic { elastic, laws: out_laws, points, dofs, kind, relations })
+    }
+
+    /// The natural state: no strain, no stress, no plastic strain.
+    pub fn initial_state(&self) -> State {
+        self.points.iter().map(|g| vec![PointState::default(); g.len()]).collect()
+    }
+
+    /// The laws' state from stored SIEF_ELGA and VARI_ELGA values per mesh cell (ETAT_INIT): the total
+    /// strain of each point from the displacements `u`.
+    pub fn state_from(
+        &self,
+        u: &[f64],
+        sig: &[Option<Vec<f64>>],
+        vari: Option<&[Option<Vec<f64>>]>,
+    ) -> Result<State, Error> {
+        let md = self.elastic.modelisation;
+        let ns = md.nsig();
+        let mut out = self.initial_state();
+        for (i, &c) in self.elastic.bulk.iter().enumerate() {
+            let name = &self.elastic.mesh.cell_names[c];
+            let npg = self.points[i].len();
+            let s = sig[c].as_ref().filter(|v| v.len() == npg * ns).ok_or_else(|| {
+                Error::runtime(format!(
+                    "ETAT_INIT: the stresses have no {npg} points of {ns} components on cell {name}"
+                ))
+            })?;
+            let ue: Vec<f64> = self.dofs.get(i).iter().map(|&d| u[d]).collect();
+            for (k, pt) in out[i].iter_mut().enumerate() {
+                pt.eps = self.strain(i, k, &ue, None);
+                pt.sig[..ns].copy_from_slice(&s[k * ns..(k + 1) * ns]);
+                if let Some(v) = vari.and_then(|v| v[c].as_ref()) {
+                    let nv = v.len() / npg;
+                    if nv >= 2 {
+                        pt.p = v[k * nv];
+                        pt.plastic = v[k * nv + 1] >= 0.5;
+                    }
+                }
+            }
+        }
+        Ok(out)
+    }
+
+    /// The strain (tensorial shear) at point `k` of bulk cell `i` for the element displacements `ue`; under
+    /// C_PLAN `ZZ` is taken from `old` (the law finds it).
+    fn strain(&self, i: usize, k: usize, ue: &[f64], old: Option<&PointState>) -> [f64; 6] {
+        let md = self.elastic.modelisation;
+        let (dim, ns) = (md.dim(), md.nsig());
+        let g = &self.points[i][k];
+        let mut e = [0.0; 6];
+        for a in 0..ue.len() / dim {
+            let b = elasticity::b_node(md, g, a);
+            for (c, row) in b.iter().enumerate().take(ns) {
+                for j in 0..dim {
+                    e[c] += row[j] * ue[a * dim + j];
+                }
+            }
+        }
+        for v in e.iter_mut().skip(3) {
+            *v *= 0.5;
+        }
+        if self.kind == Kind::PlaneStress {
+            e[2] = old.map_or(0.0, |o| o.eps[2]);
+        }
+        e
+    }
+}
+
+impl Physics for Plastic {
+    type State = State;
+
+    fn describe(&self) -> String {
+        format!("{}, RELATION={}", self.elastic.modelisation.name(), self.relations)
+    }
+
+    fn unknowns(&self) -> usize {
+        self.elastic.unknowns()
+    }
+
+    fn label(&self, dof: usize) -> String {
+        self.elastic.label(dof)
+    }
+
+    fn element_dofs(&self) -> ElementDofs {
+        self.dofs.clone()
+    }
+
+    fn assemble(
+        &self,
+        step: &StepInfo,
+        x: &[f64],
+        prev: &State,
+        mut tangent: Option<&mut Assembler>,
+        fint: &mut [f64],
+    ) -> Result<State, Failure> {
+        let md = self.elastic.modelisation;
+        let (dim, ns) = (md.dim(), md.nsig());
+        let request = if step.predict { Request::Prediction } else { Request::Full };
+        let mut states = Vec::with_capacity(prev.len());
+        for (i, prev_c) in prev.iter().enumerate() {
+            let dofs = self.dofs.get(i);
+            let nd = dofs.len();
+            let ue: Vec<f64> = dofs.iter().map(|&d| x[d]).collect();
+            let mut fe = vec![0.0; nd];
+            let mut ke = tangent.is_some().then(|| vec![0.0; nd * nd]);
+            let mut new_c = Vec::with_capacity(prev_c.len());
+            for (k, old) in prev_c.iter().enumerate() {
+                let g = &self.points[i][k];
+                let eps = self.strain(i, k, &ue, Some(old));
+                let (st, d) = self.laws[i].integrate(self.kind, old, &eps, request).map_err(|e| {
+                    let c = self.elastic.bulk[i];
+                    Failure::Step(Error::runtime(format!(
+                        "integration failure at point {} of cell {}: {e}",
+                        k + 1,
+                        self.elastic.mesh.cell_names[c]
+                    )))
+                })?;
+                let bs: Vec<[[f64; 3]; 6]> = (0..nd / dim).map(|a| elasticity::b_node(md, g, a)).collect();
+                for (a, b) in bs.iter().enumerate() {
+                    for j in 0..dim {
+                        fe[a * dim + j] += g.w * (0..ns).map(|p| b[p][j] * st.sig[p]).sum::<f64>();
+                    }
+                }
+                if let Some(ke) = ke.as_mut() {
+                    // D B per node, then Bᵀ (D B).
+                    let db: Vec<[[f64; 3]; 6]> = bs
+                        .iter()
+                        .map(|b| {
+                            let mut o = [[0.0; 3]; 6];
+                            for (p, row) in o.iter_mut().enumerate().take(ns) {
+                                for (j, v) in row.iter_mut().enumerate().take(dim) {
+                                    *v = (0..ns).map(|q| d[p][q] * b[q][j]).sum();
+                                }
+                            }
+                            o
+                        })
+                        .collect();
+                    for (a, ba) in bs.iter().enumerate() {
+                        for (bb, dbb) in db.iter().enumerate() {
+                            for r in 0..dim {
+                                for s in 0..dim {
+                                    let v: f64 = (0..ns).map(|p| ba[p][r] * dbb[p][s]).sum();
+                                    ke[(a * dim + r) * nd + bb * dim + s] += g.w * v;
+                                }
+                            }
+                        }
+                    }
+                }
+                new_c.push(st);
+            }
+            for (&d, v) in dofs.iter().zip(&fe) {
+                fint[d] += v;
+            }
+            if let (Some(asm), Some(ke)) = (tangent.as_deref_mut(), ke.as_ref()) {
+                asm.add_matrix(dofs, ke);
+            }
+            states.push(new_c);
+        }
+        Ok(states)
+    }
+
+    fn conditions(&self, loads: &[Load], cons: &mut Constraints) -> Result<(), Error> {
+        self.elastic.conditions(loads, cons)
+    }
+
+    fn dof(&self, load: &str, node: usize, component: &str) -> Result<Option<usize>, Error> {
+        self.elastic.dof(load, node, component)
+    }
+
+    fn position(&self, node: usize) -> [f64; 3] {
+        self.elastic.position(node)
+    }
+
+    fn node_name(&self, node: usize) -> String {
+        self.elastic.node_name(node)
+    }
+
+    fn forces(&self, loads: &[Load], step: &StepInfo, f: &mut [f64]) -> Result<(), Error> {
+        self.elastic.forces(loads, step, f)
+    }
+
+    fn fields(&self, x: &[f64], state: &State) -> Result<Vec<(String, Field)>, Error> {
+        let mesh = &self.elastic.mesh;
+        let ns = self.elastic.modelisation.nsig();
+        // The elastic physics gives DEPL (it stores no stress: `sief` is off).
+        let mut fields: Vec<(String, Field)> =
+            self.elastic.fields(x, &0.0)?.into_iter().filter(|(n, _)| n == "DEPL").collect();
+        let mut sig = vec![None; mesh.cells.len()];
+        let mut vari = vec![None; mesh.cells.len()];
+        for (&c, pts) in self.elastic.bulk.iter().zip(state) {
+            sig[c] = Some(pts.iter().flat_map(|p| p.sig[..ns].to_vec()).collect::<Vec<_>>());
+            vari[c] = Some(pts.iter().flat_map(|p| [p.p, if p.plastic { 1.0 } else { 0.0 }]).collect::<Vec<_>>());
+        }
+        let names = self.elastic.modelisation.sigma_names().iter().map(|s| s.to_string()).collect();
+        fields.push(("SIEF_ELGA".to_string(), Field::Elga { components: names, cells: sig }));
+        let vnames = VARI_NAMES.iter().map(|s| s.to_string()).collect();
+        fields.push(("VARI_ELGA".to_string(), Field::Elga { components: vnames, cells: vari }));
+        Ok(fields)
+    }
+
+    fn prediction(&self) -> Prediction {
+        Prediction::Tangent
+    }
+}

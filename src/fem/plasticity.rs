@@ -1,0 +1,609 @@
+//! Small-strain von Mises plasticity with isotropic hardening, as Code_Aster's `VMIS_ISOT_LINE` and
+//! `VMIS_ISOT_TRAC` compute it (`nmisot`, `rcfonc`, `rctrac`): the radial return of one integration point
+//! over a step, its internal variables — V1 the cumulated plastic strain `p`, V2 the plastic indicator
+//! (1 when the step yielded, 0 otherwise) — and the tangent of the two options the Newton loop asks for:
+//! the prediction's (`RIGI_MECA_TANG`: the start state's tangent, elastoplastic where the last step
+//! yielded) and the corrections' (`FULL_MECA`: the tangent consistent with the return).
+//!
+//! The hardening is `R(p)`: linear, `R = SY + H p` with `H = E E_T / (E − E_T)` from ECRO_LINE's
+//! `D_SIGM_EPSI = E_T`, or piecewise linear in `p` from a traction curve `σ(ε)` (TRACTION), whose first
+//! point gives the yield stress and the Young modulus `E = σ₁ / ε₁` the law uses, the other points turned
+//! into `p = ε − σ / E`; beyond its last point the curve's PROL_DROITE says what `R` does.
+//!
+//! Plane stress (C_PLAN) finds the out-of-plane strain with the return: the plastic increment solves the
+//! scalar equation where `σ_zz` stays zero, and the tangent is the 3D one condensed on `σ_zz = 0`.
+//!
+//! Tensors here are Code_Aster's: `XX YY ZZ XY XZ YZ`, tensorial shear strains (`EPXY = γ / 2`); the
+//! tangent acts on engineering shear strains (`γ`), as the element's `B` matrices give them. Internally
+//! the return works on Mandel components (shear × √2), where the Euclidean norm is the tensor's.
+
+use std::f64::consts::SQRT_2;
+
+/// What a traction curve's hardening does beyond its last point (its function's PROL_DROITE).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Beyond {
+    /// EXCLU: an error.
+    Error,
+    /// CONSTANT: R stays at its last value.
+    Constant,
+    /// LINEAIRE: the last segment's slope goes on.
+    Linear,
+}
+
+/// The isotropic hardening `R(p)`.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Hardening {
+    /// `R = sy + h p` (VMIS_ISOT_LINE).
+    Linear { sy: f64, h: f64 },
+    /// `R` piecewise linear through `(p[k], r[k])`, `p[0] = 0`, `r[0]` the yield stress (VMIS_ISOT_TRAC).
+    Curve { p: Vec<f64>, r: Vec<f64>, beyond: Beyond },
+}
+
+impl Hardening {
+    /// ECRO_LINE: the yield stress `sy` and the slope `d_sigm_epsi` of the uniaxial curve past it, with the
+    /// Young modulus `e`; an error when the slope is not below `e`.
+    pub fn linear(e: f64, d_sigm_epsi: f64, sy: f64) -> Result<Hardening, String> {
+        if e - d_sigm_epsi < f64::MIN_POSITIVE {
+            return Err(format!(
+                "ECRO_LINE: D_SIGM_EPSI = {d_sigm_epsi} must be smaller than the Young modulus E = {e}"
+            ));
+        }
+        Ok(Hardening::Linear { sy, h: d_sigm_epsi * e / (e - d_sigm_epsi) })
+    }
+
+    /// TRACTION: the points `(ε, σ)` of the curve; the hardening and the Young modulus of its first point.
+    pub fn traction(eps: &[f64], sig: &[f64], beyond: Beyond) -> Result<(Hardening, f64), String> {
+        if eps.len() != sig.len() || eps.len() < 2 {
+            return Err("TRACTION: the curve SIGM needs at least two points".into());
+        }
+        if !(eps[0] > 0.0 && sig[0] > 0.0) {
+            return Err(format!(
+                "TRACTION: the first point of SIGM (ε = {}, σ = {}) must be the elastic limit, both positive",
+                eps[0], sig[0]
+            ));
+        }
+        let e = sig[0] / eps[0];
+        let mut p: Vec<f64> = eps.iter().zip(sig).map(|(x, s)| x - s / e).collect();
+        p[0] = 0.0;
+        if let Some(k) = p.windows(2).position(|w| w[1] <= w[0]) {
+            return Err(format!(
+                "TRACTION: the curve SIGM must rise slower than its first slope E = {e}: the plastic strain \
+                 ε − σ/E does not increase between its points {} and {}",
+                k + 1,
+                k + 2
+            ));
+        }
+        Ok((Hardening::Curve { p, r: sig.to_vec(), beyond }, e))
+    }
+
+    /// The yield stress `R(0)`.
+    pub fn yield_stress(&self) -> f64 {
+        match self {
+            Hardening::Linear { sy, .. } => *sy,
+            Hardening::Curve { r, .. } => r[0],
+        }
+    }
+
+    /// The segment of the curve holding `p` (`p < p[k+1]`, the last one beyond), and whether `p` lies
+    /// beyond the curve.
+    fn segment(p: &[f64], at: f64) -> (usize, bool) {
+        match (1..p.len()).find(|&i| at < p[i]) {
+            Some(i) => (i - 1, false),
+            None => (p.len() - 2, true),
+        }
+    }
+
+    /// `R(p)` and its slope `R'(p)` (the slope of the segment holding `p`).
+    pub fn at(&self, at: f64) -> Result<(f64, f64), String> {
+        match self {
+            Hardening::Linear { sy, h } => Ok((sy + h * at, *h)),
+            Hardening::Curve { p, r, beyond } => {
+                let (i, past) = Hardening::segment(p, at);
+                let slope =
+                    if past { self.beyond_slope(*beyond, p, r)? } else { (r[i + 1] - r[i]) / (p[i + 1] - p[i]) };
+                let (p0, r0) = if past { (p[i + 1], r[i + 1]) } else { (p[i], r[i]) };
+                Ok((r0 + slope * (at - p0), slope))
+            }
+        }
+    }
+
+    fn beyond_slope(&self, beyond: Beyond, p: &[f64], r: &[f64]) -> Result<f64, String> {
+        let n = p.len();
+        match beyond {
+            Beyond::Error => Err(format!(
+                "the cumulated plastic strain goes beyond the last point of the traction curve (p = {}), whose \
+                 PROL_DROITE is 'EXCLU'",
+                p[n - 1]
+            )),
+            Beyond::Constant => Ok(0.0),
+            Beyond::Linear => Ok((r[n - 1] - r[n - 2]) / (p[n - 1] - p[n - 2])),
+        }
+    }
+
+    /// The radial return from `p` for an elastic trial equivalent stress `seq` beyond `R(p)`, with
+    /// `three_mu = 3μ`: the increment `Δp` solving `seq − 3μ Δp = R(p + Δp)`, with `R` and `R'` there.
+    pub fn radial_return(&self, at: f64, seq: f64, three_mu: f64) -> Result<(f64, f64, f64), String> {
+        match self {
+            Hardening::Linear { sy, h } => {
+                let dp = (seq - sy - h * at) / (h + three_mu);
+                Ok((dp, sy + h * (at + dp), *h))
+            }
+            Hardening::Curve { p, r, beyond } => {
+                // The segment where the return lands: the first point past `at` whose R + 3μ (p_k − p) exceeds seq.
+                let (start, _) = Hardening::segment(p, at);
+                let landed = (start + 1..p.len()).find(|&k| r[k] + three_mu * (p[k] - at) - seq > 0.0);
+                let (p0, r0, slope) = match landed {
+                    Some(k) => (p[k - 1], r[k - 1], (r[k] - r[k - 1]) / (p[k] - p[k - 1])),
+                    None => {
+                        let n = p.len();
+                        (p[n - 1], r[n - 1], self.beyond_slope(*beyond, p, r)?)
+                    }
+                };
+                let dp = (seq - r0 - slope * (at - p0)) / (three_mu + slope);
+                Ok((dp, r0 + slope * (at + dp - p0), slope))
+            }
+        }
+    }
+}
+
+/// The plane of the computation, which decides the components and the treatment of `zz`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// 3D: six components.
+    Solid,
+    /// D_PLAN and AXIS: `XX YY ZZ XY`, the strain `ZZ` given by the element.
+    Plane,
+    /// C_PLAN: `XX YY ZZ XY`, the strain `ZZ` found by the law so that `σ_zz = 0`.
+    PlaneStress,
+}
+
+impl Kind {
+    /// The number of components.
+    pub fn ncomp(self) -> usize {
+        if self == Kind::Solid {
+            6
+        } else {
+            4
+        }
+    }
+}
+
+/// The state of one integration point: the total strain (tensorial shear), the stress, `p` and the
+/// plastic indicator.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PointState {
+    pub eps: [f64; 6],
+    pub sig: [f64; 6],
+    pub p: f64,
+    pub plastic: bool,
+}
+
+/// What the Newton loop asks of a point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Request {
+    /// RIGI_MECA_TANG: the start state's tangent; the state does not change.
+    Prediction,
+    /// FULL_MECA: the return and its consistent tangent.
+    Full,
+}
+
+/// A material point's law: isotropic elasticity and, unless `hardening` is None, von Mises plasticity.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VonMises {
+    pub e: f64,
+    pub nu: f64,
+    pub hardening: Option<Hardening>,
+}
+
+/// Tensorial (`EPXY`) to Mandel (`√2 EPXY`) components, and back.
+fn to_mandel(v: &[f64; 6]) -> [f64; 6] {
+    [v[0], v[1], v[2], v[3] * SQRT_2, v[4] * SQRT_2, v[5] * SQRT_2]
+}
+
+fn from_mandel(v: &[f64; 6]) -> [f64; 6] {
+    [v[0], v[1], v[2], v[3] / SQRT_2, v[4] / SQRT_2, v[5] / SQRT_2]
+}
+
+/// The deviator of Mandel components and their mean.
+fn deviator(v: &[f64; 6]) -> ([f64; 6], f64) {
+    let m = (v[0] + v[1] + v[2]) / 3.0;
+    let mut d = *v;
+    for x in d.iter_mut().take(3) {
+        *x -= m;
+    }
+    (d, m)
+}
+
+fn equivalent(dev: &[f64; 6], n: usize) -> f64 {
+    (1.5 * dev[..n].iter().map(|x| x * x).sum::<f64>()).sqrt()
+}
+
+impl VonMises {
+    /// One step of the point: from the state `old`, the total strain `eps` at the step's end (tensorial
+    /// shear; under C_PLAN its `ZZ` is not read). The new state and the tangent (engineering shear, the
+    /// first `kind.ncomp()` rows and columns; under C_PLAN the `ZZ` row and column are zero). Under
+    /// [`Request::Prediction`] the state is `old` and the tangent is the start state's.
+    pub fn integrate(
+        &self,
+        kind: Kind,
+        old: &PointState,
+        eps: &[f64; 6],
+        option: Request,
+    ) -> Result<(PointState, [[f64; 6]; 6]), String> {
+        let n = kind.ncomp();
+        let (e, nu) = (self.e, self.nu);
+        let two_mu = e / (1.0 + nu);
+        let three_k = e / (1.0 - 2.0 * nu);
+        let three_mu = 1.5 * two_mu;
+        let mut deps = [0.0; 6];
+        for k in 0..n {
+            deps[k] = eps[k] - old.eps[k];
+        }
+        if kind == Kind::PlaneStress {
+            deps[2] = -nu / (1.0 - nu) * (deps[0] + deps[1]);
+        }
+        let deps = to_mandel(&deps);
+        let (mut depsdv, mut depsmo) = deviator(&deps);
+        let (sigmdv, sigmmo) = deviator(&to_mandel(&old.sig));
+        let mut sigel = [0.0; 6];
+        for k in 0..n {
+            sigel[k] = sigmdv[k] + two_mu * depsdv[k];
+        }
+        // The hardening at the start state.
+        let (r_old, slope_old) = match &self.hardening {
+            Some(h) => h.at(old.p)?,
+            None => (f64::INFINITY, 0.0),
+        };
+        let mut state = *old;
+        let (mut sigdv, mut rp, mut slope, mut dp, plastic, sigeps);
+        match option {
+            Request::Prediction => {
+                sigdv = sigmdv;
+                rp = equivalent(&sigmdv, n);
+                slope = slope_old;
+                dp = 0.0;
+                plastic = old.plastic && self.hardening.is_some();
+                sigeps = 1.0;
+            }
+            Request::Full => {
+                let mut seq = equivalent(&sigel, n);
+                if r_old.is_finite() && (seq - r_old).abs() <= f64::EPSILON * r_old {
+                    seq = r_old;
+                }
+                rp = r_old;
+                slope = slope_old;
+                dp = 0.0;
+                plastic = seq - r_old > 0.0;
+                if plastic {
+                    let h = self.hardening.as_ref().expect("a finite yield stress has a hardening");
+                    if kind == Kind::PlaneStress {
+                        let (x, r, s) = plane_stress_return(h, e, nu, old.p, r_old, seq, &sigel)?;
+                        dp = x;
+                        rp = r;
+                        slope = s;
+                        let dx = 3.0 * (1.0 - 2.0 * nu) * sigel[2] * dp / (e * dp + 2.0 * (1.0 - nu) * rp);
+                        depsmo += dx / 3.0;
+                        depsdv[0] -= dx / 3.0;
+                        depsdv[1] -= dx / 3.0;
+                        depsdv[2] += dx * 2.0 / 3.0;
+                    } else {
+                        let (x, r, s) = h.radial_return(old.p, seq, three_mu)?;
+                        dp = x;
+                        rp = r;
+                        slope = s;
+                    }
+                }
+                let mut sig = [0.0; 6];
+                sigdv = [0.0; 6];
+                for k in 0..n {
+                    sigdv[k] = (sigmdv[k] + two_mu * depsdv[k]) * rp / (rp + three_mu * dp);
+                    sig[k] = sigdv[k] + if k < 3 { sigmmo + three_k * depsmo } else { 0.0 };
+                }
+                let mut total = [0.0; 6];
+                total[..n].copy_from_slice(&eps[..n]);
+                if kind == Kind::PlaneStress {
+                    // εzz of the law: the elastic estimate with the plastic correction.
+                    total[2] = old.eps[2] + depsmo + depsdv[2];
+                }
+                state = PointState { eps: total, sig: from_mandel(&sig), p: old.p + dp, plastic };
+                sigeps = (0..n).map(|k| sigdv[k] * depsdv[k]).sum::<f64>();
+            }
+        }
+        // The tangent, on Mandel components.
+        let mut d = [[0.0; 6]; 6];
+        let mut a = 1.0;
+        if plastic && sigeps >= 0.0 {
+            if rp <= 1e-15 {
+                return Err("the equivalent stress of a plastic point vanishes: no tangent".into());
+            }
+            a = 1.0 + three_mu * dp / rp;
+            let coef = -three_mu * three_mu / (three_mu + slope) / (rp * rp) * (1.0 - dp * slope / rp) / a;
+            for k in 0..n {
+                for l in 0..n {
+                    d[k][l] = coef * sigdv[k] * sigdv[l];
+                }
+            }
+        }
+        for row in d.iter_mut().take(3) {
+            for x in row.iter_mut().take(3) {
+                *x += three_k / 3.0 - two_mu / (3.0 * a);
+            }
+        }
+        for (k, row) in d.iter_mut().enumerate().take(n) {
+            row[k] += two_mu / a;
+        }
+        if kind == Kind::PlaneStress {
+            let d33 = d[2][2];
+            let col: Vec<f64> = (0..n).map(|k| d[k][2]).collect();
+            let row: Vec<f64> = (0..n).map(|l| d[2][l]).collect();
+            for k in (0..n).filter(|&k| k != 2) {
+                for l in (0..n).filter(|&l| l != 2) {
+                    d[k][l] -= col[k] * row[l] / d33;
+                }
+            }
+            for k in 0..n {
+                d[k][2] = 0.0;
+                d[2][k] = 0.0;
+            }
+        }
+        // Mandel to engineering shear: σ_xy = σ₄/√2 and ε₄ = γ/√2.
+        for (k, row) in d.iter_mut().enumerate().take(n) {
+            for (l, x) in row.iter_mut().enumerate().take(n) {
+                if k >= 3 {
+                    *x /= SQRT_2;
+                }
+                if l >= 3 {
+                    *x /= SQRT_2;
+                }
+            }
+        }
+        Ok((state, d))
+    }
+}
+
+/// The plane-stress return: `Δp` where the equivalent stress of the trial deviator corrected by the
+/// out-of-plane strain `dx(Δp)` that keeps `σ_zz = 0` meets `R(p + Δp) + 3μ Δp`; with `R` and `R'` there.
+fn plane_stress_return(
+    h: &Hardening,
+    e: f64,
+    nu: f64,
+    p: f64,
+    r_old: f64,
+    seq: f64,
+    sigel: &[f64; 6],
+) -> Result<(f64, f64, f64), String> {
+    let two_mu = e / (1.0 + nu);
+    let g = |dp: f64| -> Result<f64, String> {
+        let (r, _) = h.at(p + dp)?;
+        let dx = 3.0 * (1.0 - 2.0 * nu) * sigel[2] * dp / (e * dp + 2.0 * (1.0 - nu) * r);
+        let s = (sigel[0] - two_mu / 3.0 * dx).powi(2)
+            + (sigel[1] - two_mu / 3.0 * dx).powi(2)
+            + (sigel[2] + two_mu * 2.0 / 3.0 * dx).powi(2)
+            + sigel[3].powi(2);
+        Ok(1.5 * two_mu * dp - (1.5 * s).sqrt() + r)
+    };
+    // g(0) = R − seq < 0; an upper bound where g > 0 from the 3D estimate, doubled as needed.
+    let (mut lo, mut glo) = (0.0, r_old - seq);
+    let mut hi = h.radial_return(p, seq, 1.5 * two_mu)?.0.max(f64::MIN_POSITIVE);
+    let mut ghi = g(hi)?;
+    let mut k = 0;
+    while ghi <= 0.0 {
+        lo = hi;
+        glo = ghi;
+        hi *= 2.0;
+        ghi = g(hi)?;
+        k += 1;
+        if k > 200 {
+            return Err("the plane-stress plastic return finds no bound".into());
+        }
+    }
+    // Regula falsi (Illinois) to the round-off of the yield stress.
+    let tol = 1e-13 * h.yield_stress().abs().max(seq.abs());
+    let mut x = hi;
+    let mut side = 0;
+    for _ in 0..500 {
+        x = (lo * ghi - hi * glo) / (ghi - glo);
+        let gx = g(x)?;
+        if gx.abs() <= tol || (hi - lo).abs() <= 1e-15 * hi.abs() {
+            break;
+        }
+        if gx > 0.0 {
+            hi = x;
+            ghi = gx;
+            if side == 1 {
+                glo /= 2.0;
+            }
+            side = 1;
+        } else {
+            lo = x;
+            glo = gx;
+            if side == -1 {
+                ghi /= 2.0;
+            }
+            side = -1;
+        }
+    }
+    let (r, s) = h.at(p + x)?;
+    Ok((x, r, s))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn law(h: f64) -> VonMises {
+        let e = 200_000.0;
+        VonMises { e, nu: 0.3, hardening: Some(Hardening::linear(e, h, 200.0).unwrap()) }
+    }
+
+    /// A uniaxial stress path in 3D, driven by the strains of uniaxial stress: σ = SY + E_T (ε − SY/E).
+    #[test]
+    fn uniaxial_stress_follows_the_bilinear_curve() {
+        let (e, et, sy) = (200_000.0, 10_000.0, 200.0);
+        let l = law(et);
+        let mut st = PointState::default();
+        // Uniaxial stress: find the lateral strain by Newton on σ_yy = σ_zz = 0 with the tangent.
+        for step in 1..=20 {
+            let exx = step as f64 * 2e-4;
+            let mut eps = [exx, st.eps[1], st.eps[2], 0.0, 0.0, 0.0];
+            let mut new = st;
+            for _ in 0..30 {
+                let (s, d) = l.integrate(Kind::Solid, &st, &eps, Request::Full).unwrap();
+                new = s;
+                let r = [s.sig[1], s.sig[2]];
+                if r[0].abs().max(r[1].abs()) < 1e-9 {
+                    break;
+                }
+                let (a, b, c, dd) = (d[1][1], d[1][2], d[2][1], d[2][2]);
+                let det = a * dd - b * c;
+                eps[1] -= (dd * r[0] - b * r[1]) / det;
+                eps[2] -= (-c * r[0] + a * r[1]) / det;
+            }
+            st = new;
+            let want = if exx <= sy / e { e * exx } else { sy + et * (exx - sy / e) };
+            assert!((st.sig[0] - want).abs() < 1e-8 * want, "ε = {exx}: σ = {} ≠ {want}", st.sig[0]);
+            let p_want = if exx <= sy / e { 0.0 } else { (want - sy) / (e * et / (e - et)) };
+            assert!((st.p - p_want).abs() < 1e-12, "p = {} ≠ {p_want}", st.p);
+            assert_eq!(st.plastic, exx > sy / e);
+        }
+    }
+
+    /// Simple shear: τ = SY/√3 + μ_T-like hardening: in pure shear σ_eq = √3 τ, p = γ_p/√3, and
+    /// τ = (R(p))/√3 with γ = τ/μ + γ_p.
+    #[test]
+    fn simple_shear_follows_the_closed_form() {
+        let (e, nu, et, sy) = (200_000.0, 0.3, 10_000.0, 200.0);
+        let l = law(et);
+        let mu = e / (2.0 * (1.0 + nu));
+        let h = e * et / (e - et);
+        let mut st = PointState::default();
+        for step in 1..=10 {
+            let gamma = step as f64 * 5e-4;
+            let (s, _) = l.integrate(Kind::Solid, &st, &[0.0, 0.0, 0.0, gamma / 2.0, 0.0, 0.0], Request::Full).unwrap();
+            st = s;
+            // τ = μ (γ − √3 p) and √3 τ = SY + H p when plastic.
+            let tau_el = mu * gamma;
+            let (tau, p) = if 3f64.sqrt() * tau_el <= sy {
+                (tau_el, 0.0)
+            } else {
+                let p = (3f64.sqrt() * mu * gamma - sy) / (3.0 * mu + h);
+                ((sy + h * p) / 3f64.sqrt(), p)
+            };
+            assert!((st.sig[3] - tau).abs() < 1e-9 * tau, "γ = {gamma}: τ = {} ≠ {tau}", st.sig[3]);
+            assert!((st.p - p).abs() < 1e-14, "p = {} ≠ {p}", st.p);
+            assert!(st.sig[0].abs() < 1e-9 && st.sig[2].abs() < 1e-9);
+        }
+    }
+
+    /// The FULL_MECA tangent is the derivative of the stress in the total strain (engineering shear),
+    /// in 3D and plane strain, on linear hardening and on a traction curve.
+    #[test]
+    fn consistent_tangent_matches_finite_differences() {
+        let (hc, e) = Hardening::traction(&[1e-3, 3e-3, 1e-2], &[200.0, 260.0, 300.0], Beyond::Linear).unwrap();
+        let laws = [law(10_000.0), VonMises { e, nu: 0.25, hardening: Some(hc) }];
+        for l in &laws {
+            for kind in [Kind::Solid, Kind::Plane] {
+                let n = kind.ncomp();
+                let old = PointState {
+                    eps: [1e-3, -3e-4, -2e-4, 1e-4, 0.0, 0.0],
+                    sig: [150.0, -20.0, 10.0, 40.0, 0.0, 0.0],
+                    p: 2e-4,
+                    plastic: true,
+                };
+                let eps =
+                    [2.6e-3, -9e-4, -5e-4, 6e-4, if n == 6 { 3e-4 } else { 0.0 }, if n == 6 { -2e-4 } else { 0.0 }];
+                let (s0, d) = l.integrate(kind, &old, &eps, Request::Full).unwrap();
+                assert!(s0.plastic && s0.p > old.p);
+                for j in 0..n {
+                    let h = 1e-9;
+                    let (mut ep, mut em) = (eps, eps);
+                    // Engineering shear: γ = 2 ε.
+                    let dj = if j >= 3 { h / 2.0 } else { h };
+                    ep[j] += dj;
+                    em[j] -= dj;
+                    let (sp, _) = l.integrate(kind, &old, &ep, Request::Full).unwrap();
+                    let (sm, _) = l.integrate(kind, &old, &em, Request::Full).unwrap();
+                    for i in 0..n {
+                        let fd = (sp.sig[i] - sm.sig[i]) / (2.0 * h);
+                        let scale = d[0][0].abs();
+                        assert!(
+                            (fd - d[i][j]).abs() < 1e-6 * scale,
+                            "{kind:?} D[{i}][{j}] = {} vs finite differences {fd}",
+                            d[i][j]
+                        );
+                    }
+                }
+            }
+        }
+    }
+
+    /// Plane stress: a uniaxial path keeps σ_zz = 0 and follows the bilinear curve; the condensed
+    /// prediction tangent of an elastic point is the plane-stress Hooke matrix.
+    #[test]
+    fn plane_stress_uniaxial_path() {
+        let (e, et, sy, nu) = (200_000.0, 10_000.0, 200.0, 0.3);
+        let l = law(et);
+        let (_, d) = l.integrate(Kind::PlaneStress, &PointState::default(), &[0.0; 6], Request::Prediction).unwrap();
+        let c = e / (1.0 - nu * nu);
+        assert!((d[0][0] - c).abs() < 1e-9 * c && (d[0][1] - c * nu).abs() < 1e-9 * c);
+        assert!((d[3][3] - e / (2.0 * (1.0 + nu))).abs() < 1e-9 * c);
+        let mut st = PointState::default();
+        for step in 1..=10 {
+            let exx = step as f64 * 4e-4;
+            let mut eps = [exx, st.eps[1], 0.0, 0.0, 0.0, 0.0];
+            let mut new = st;
+            for _ in 0..50 {
+                let (s, d) = l.integrate(Kind::PlaneStress, &st, &eps, Request::Full).unwrap();
+                new = s;
+                if s.sig[1].abs() < 1e-9 {
+                    break;
+                }
+                eps[1] -= s.sig[1] / d[1][1];
+            }
+            st = new;
+            let want = if exx <= sy / e { e * exx } else { sy + et * (exx - sy / e) };
+            assert!((st.sig[0] - want).abs() < 1e-8 * want, "ε = {exx}: σ = {} ≠ {want}", st.sig[0]);
+            assert!(st.sig[2].abs() < 1e-9 * want, "σzz = {}", st.sig[2]);
+            // Plastic incompressibility and elastic Poisson effect: ε_zz = −ν σ/E − p/2.
+            let ezz = -nu * st.sig[0] / e - st.p / 2.0;
+            assert!((st.eps[2] - ezz).abs() < 1e-10, "εzz = {} ≠ {ezz}", st.eps[2]);
+        }
+    }
+
+    /// A traction curve: the yield stress and E of its first point, R piecewise linear in p = ε − σ/E,
+    /// extended as PROL_DROITE says.
+    #[test]
+    fn traction_curve_hardening() {
+        let (h, e) = Hardening::traction(&[1e-3, 2e-3, 4e-3], &[200.0, 250.0, 280.0], Beyond::Constant).unwrap();
+        assert_eq!(e, 200_000.0);
+        assert_eq!(h.yield_stress(), 200.0);
+        // p of the points: 0, 2e-3 − 250/2e5 = 7.5e-4, 4e-3 − 1.4e-3 = 2.6e-3.
+        let (r, s) = h.at(7.5e-4 / 2.0).unwrap();
+        assert!((r - 225.0).abs() < 1e-9 && (s - 50.0 / 7.5e-4).abs() < 1e-6);
+        assert_eq!(h.at(1.0).unwrap(), (280.0, 0.0));
+        // The return lands on the segment the closed form says: seq − 3μ Δp = R(p + Δp).
+        let three_mu = 3.0 * e / 2.6;
+        let (dp, r, _) = h.radial_return(0.0, 400.0, three_mu).unwrap();
+        assert!((400.0 - three_mu * dp - r).abs() < 1e-9 && (r - h.at(dp).unwrap().0).abs() < 1e-9);
+        let (ex, _) = Hardening::traction(&[1e-3, 2e-3], &[200.0, 250.0], Beyond::Error).unwrap();
+        assert!(ex.at(1.0).unwrap_err().contains("EXCLU"));
+        assert!(Hardening::linear(100.0, 100.0, 1.0).is_err());
+    }
+
+    /// Unloading after yield is elastic: V2 back to 0, p kept; the prediction tangent of a point that
+    /// yielded in its last step is the elastoplastic one.
+    #[test]
+    fn unloading_is_elastic_and_the_prediction_remembers_yield() {
+        let l = law(10_000.0);
+        let (s1, _) =
+            l.integrate(Kind::Solid, &PointState::default(), &[0.0, 0.0, 0.0, 2e-3, 0.0, 0.0], Request::Full).unwrap();
+        assert!(s1.plastic);
+        let (_, dp) = l.integrate(Kind::Solid, &s1, &s1.eps, Request::Prediction).unwrap();
+        let mu = 200_000.0 / 2.6;
+        assert!(dp[3][3] < 0.9 * mu, "elastoplastic shear stiffness {} vs μ {mu}", dp[3][3]);
+        let (s2, d2) = l.integrate(Kind::Solid, &s1, &[0.0, 0.0, 0.0, 1.5e-3, 0.0, 0.0], Request::Full).unwrap();
+        assert!(!s2.plastic && s2.p == s1.p);
+        assert!((s2.sig[3] - (s1.sig[3] - mu * 1e-3)).abs() < 1e-9);
+        assert!((d2[3][3] - mu).abs() < 1e-9 * mu);
+    }
+}
