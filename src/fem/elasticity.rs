@@ -752,6 +752,29 @@ pub fn gauss_fields_thermal(
     Ok(out)
 }
 
+/// The nodal forces `∫ Bᵀ σ` of the stresses `sig` at the `RIGI` points of a cell (FORC_NODA), node by
+/// node.
+pub fn internal_forces(
+    m: Modelisation,
+    t: CellType,
+    coords: &[[f64; 3]],
+    sig: &[[f64; 6]],
+) -> Result<Vec<f64>, ElementError> {
+    let rule = rigi_rule_of(m, t);
+    let gg = gauss_geometry(m, t, coords, &rule)?;
+    let (dim, ns, nno) = (m.dim(), m.nsig(), t.nnodes());
+    let mut v = vec![0.0; nno * dim];
+    for (g, s) in gg.iter().zip(sig) {
+        for a in 0..nno {
+            let b = b_node(m, g, a);
+            for i in 0..dim {
+                v[a * dim + i] += g.w * (0..ns).map(|p| b[p][i] * s[p]).sum::<f64>();
+            }
+        }
+    }
+    Ok(v)
+}
+
 /// The vertex (linear) cell type of `t` (QUAD4 for QUAD8, ...).
 pub fn vertex_type(t: CellType) -> CellType {
     use CellType::*;

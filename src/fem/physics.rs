@@ -341,6 +341,14 @@ pub trait Physics {
         false
     }
 
+    /// Whether the relative criterion gives way to the absolute one when the reference force falls to
+    /// 1e-6 of the smallest one of the converged states (after the first step), with the absolute residual
+    /// of the last converged state as its tolerance: Code_Aster's mechanics (`nmcore_swap`), for steps
+    /// where the loads and the reactions vanish.
+    fn swaps_to_absolute(&self) -> bool {
+        false
+    }
+
     /// A factor on the rows of unknown `dof` before the factorization, which may make the tangent
     /// symmetric (1 by default). It changes neither the solution nor the residual Newton tests.
     fn row_scale(&self, _dof: usize) -> f64 {

@@ -25,6 +25,9 @@ pub struct Plastic {
     kind: Kind,
     /// The relations, for the run log.
     relations: String,
+    /// The elastic matrix instead of the tangent for the prediction and for the corrections.
+    pub elastic_prediction: bool,
+    pub elastic_correction: bool,
 }
 
 /// The laws' state: per bulk cell, per point.
@@ -55,7 +58,16 @@ impl Plastic {
             Modelisation::DPlan | Modelisation::Axis => Kind::Plane,
         };
         let dofs = elastic.element_dofs();
-        Ok(Plastic { elastic, laws: out_laws, points, dofs, kind, relations })
+        Ok(Plastic {
+            elastic,
+            laws: out_laws,
+            points,
+            dofs,
+            kind,
+            relations,
+            elastic_prediction: false,
+            elastic_correction: false,
+        })
     }
 
     /// The natural state: no strain, no stress, no plastic strain.
@@ -153,6 +165,7 @@ impl Physics for Plastic {
         let md = self.elastic.modelisation;
         let (dim, ns) = (md.dim(), md.nsig());
         let request = if step.predict { Request::Prediction } else { Request::Full };
+        let elastic_matrix = if step.predict { self.elastic_prediction } else { self.elastic_correction };
         let mut states = Vec::with_capacity(prev.len());
         for (i, prev_c) in prev.iter().enumerate() {
             let dofs = self.dofs.get(i);
@@ -164,14 +177,15 @@ impl Physics for Plastic {
             for (k, old) in prev_c.iter().enumerate() {
                 let g = &self.points[i][k];
                 let eps = self.strain(i, k, &ue, Some(old));
-                let (st, d) = self.laws[i].integrate(self.kind, old, &eps, request).map_err(|e| {
-                    let c = self.elastic.bulk[i];
-                    Failure::Step(Error::runtime(format!(
-                        "integration failure at point {} of cell {}: {e}",
-                        k + 1,
-                        self.elastic.mesh.cell_names[c]
-                    )))
-                })?;
+                let (st, d) =
+                    self.laws[i].integrate_with(self.kind, old, &eps, request, elastic_matrix).map_err(|e| {
+                        let c = self.elastic.bulk[i];
+                        Failure::Step(Error::runtime(format!(
+                            "integration failure at point {} of cell {}: {e}",
+                            k + 1,
+                            self.elastic.mesh.cell_names[c]
+                        )))
+                    })?;
                 let bs: Vec<[[f64; 3]; 6]> = (0..nd / dim).map(|a| elasticity::b_node(md, g, a)).collect();
                 for (a, b) in bs.iter().enumerate() {
                     for j in 0..dim {
@@ -257,5 +271,9 @@ impl Physics for Plastic {
 
     fn prediction(&self) -> Prediction {
         Prediction::Tangent
+    }
+
+    fn swaps_to_absolute(&self) -> bool {
+        true
     }
 }

@@ -193,6 +193,17 @@ pub struct VonMises {
     pub e: f64,
     pub nu: f64,
     pub hardening: Option<Hardening>,
+    /// The controls of an iterative return (C_PLAN): COMPORTEMENT's RESI_INTE (relative to the yield
+    /// stress) and ITER_INTE_MAXI.
+    pub resi_inte: f64,
+    pub iter_inte: usize,
+}
+
+impl VonMises {
+    /// The law with Code_Aster's default controls (RESI_INTE 1e-6, ITER_INTE_MAXI 20).
+    pub fn new(e: f64, nu: f64, hardening: Option<Hardening>) -> VonMises {
+        VonMises { e, nu, hardening, resi_inte: 1e-6, iter_inte: 20 }
+    }
 }
 
 /// Tensorial (`EPXY`) to Mandel (`√2 EPXY`) components, and back.
@@ -228,7 +239,20 @@ impl VonMises {
         kind: Kind,
         old: &PointState,
         eps: &[f64; 6],
+        request: Request,
+    ) -> Result<(PointState, [[f64; 6]; 6]), String> {
+        self.integrate_with(kind, old, eps, request, false)
+    }
+
+    /// [`VonMises::integrate`], the tangent replaced by the elastic matrix when `elastic_matrix` (NEWTON
+    /// MATRICE or PREDICTION 'ELASTIQUE': Code_Aster's `*_ELAS` options).
+    pub fn integrate_with(
+        &self,
+        kind: Kind,
+        old: &PointState,
+        eps: &[f64; 6],
         option: Request,
+        elastic_matrix: bool,
     ) -> Result<(PointState, [[f64; 6]; 6]), String> {
         let n = kind.ncomp();
         let (e, nu) = (self.e, self.nu);
@@ -277,7 +301,8 @@ impl VonMises {
                 if plastic {
                     let h = self.hardening.as_ref().expect("a finite yield stress has a hardening");
                     if kind == Kind::PlaneStress {
-                        let (x, r, s) = plane_stress_return(h, e, nu, old.p, r_old, seq, &sigel)?;
+                        let (x, r, s) =
+                            plane_stress_return(h, e, nu, old.p, seq, &sigel, self.resi_inte, self.iter_inte)?;
                         dp = x;
                         rp = r;
                         slope = s;
@@ -312,7 +337,7 @@ impl VonMises {
         // The tangent, on Mandel components.
         let mut d = [[0.0; 6]; 6];
         let mut a = 1.0;
-        if plastic && sigeps >= 0.0 {
+        if plastic && sigeps >= 0.0 && !elastic_matrix {
             if rp <= 1e-15 {
                 return Err("the equivalent stress of a plastic point vanishes: no tangent".into());
             }
@@ -363,14 +388,19 @@ impl VonMises {
 
 /// The plane-stress return: `Δp` where the equivalent stress of the trial deviator corrected by the
 /// out-of-plane strain `dx(Δp)` that keeps `σ_zz = 0` meets `R(p + Δp) + 3μ Δp`; with `R` and `R'` there.
+/// Solved as Code_Aster does (`zerofr`, 'DEKKER'): secants from 0 and the 3D estimate, bracketed once the
+/// root is enclosed (a bisection when a secant leaves the bracket), until the residual is below
+/// `resi · SY`, in at most `iter_max` evaluations.
+#[allow(clippy::too_many_arguments)]
 fn plane_stress_return(
     h: &Hardening,
     e: f64,
     nu: f64,
     p: f64,
-    r_old: f64,
     seq: f64,
     sigel: &[f64; 6],
+    resi: f64,
+    iter_max: usize,
 ) -> Result<(f64, f64, f64), String> {
     let two_mu = e / (1.0 + nu);
     let g = |dp: f64| -> Result<f64, String> {
@@ -382,49 +412,63 @@ fn plane_stress_return(
             + sigel[3].powi(2);
         Ok(1.5 * two_mu * dp - (1.5 * s).sqrt() + r)
     };
-    // g(0) = R − seq < 0; an upper bound where g > 0 from the 3D estimate, doubled as needed.
-    let (mut lo, mut glo) = (0.0, r_old - seq);
-    let mut hi = h.radial_return(p, seq, 1.5 * two_mu)?.0.max(f64::MIN_POSITIVE);
-    let mut ghi = g(hi)?;
-    let mut k = 0;
-    while ghi <= 0.0 {
-        lo = hi;
-        glo = ghi;
-        hi *= 2.0;
-        ghi = g(hi)?;
-        k += 1;
-        if k > 200 {
-            return Err("the plane-stress plastic return finds no bound".into());
-        }
+    let tol = resi.abs() * h.yield_stress();
+    let fail =
+        || format!("the plane-stress plastic return does not converge in ITER_INTE_MAXI = {iter_max} iterations");
+    // The first guess: the return of the trial state as if ε_zz were free of it.
+    let guess = h.radial_return(p, seq, 1.5 * two_mu)?.0;
+    let (mut x, mut fx) = (0.0, g(0.0)?);
+    if fx.abs() < tol {
+        return Ok((0.0, h.at(p)?.0, h.at(p)?.1));
     }
-    // Regula falsi (Illinois) to the round-off of the yield stress.
-    let tol = 1e-13 * h.yield_stress().abs().max(seq.abs());
-    let mut x = hi;
-    let mut side = 0;
-    for _ in 0..500 {
-        x = (lo * ghi - hi * glo) / (ghi - glo);
-        let gx = g(x)?;
-        if gx.abs() <= tol || (hi - lo).abs() <= 1e-15 * hi.abs() {
-            break;
-        }
-        if gx > 0.0 {
-            hi = x;
-            ghi = gx;
-            if side == 1 {
-                glo /= 2.0;
+    let (mut y, mut fy) = (guess, g(guess)?);
+    let mut n = 1;
+    let root = 'search: loop {
+        if fy > 0.0 {
+            // Enclosed in [x, y]: secants kept inside the bracket (a bisection where one leaves it).
+            let (mut lo, mut hi) = (x, y);
+            loop {
+                if fx == fy {
+                    return Err(fail());
+                }
+                let mut z = y - (y - x) * fy / (fy - fx);
+                if (z - lo) * (z - hi) > 0.0 {
+                    z = 0.5 * (lo + hi);
+                }
+                n += 1;
+                let fz = g(z)?;
+                if fz.abs() < tol {
+                    break 'search z;
+                }
+                if n > iter_max {
+                    return Err(fail());
+                }
+                if fz < 0.0 {
+                    lo = z;
+                } else {
+                    hi = z;
+                }
+                (x, fx, y, fy) = (y, fy, z, fz);
             }
-            side = 1;
         } else {
-            lo = x;
-            glo = gx;
-            if side == -1 {
-                ghi /= 2.0;
+            if fy < fx || fx == fy {
+                return Err(fail());
             }
-            side = -1;
+            let z = y - (y - x) * fy / (fy - fx);
+            n += 1;
+            (x, fx) = (y, fy);
+            y = z;
+            fy = g(z)?;
+            if fy.abs() < tol {
+                break z;
+            }
+            if n > iter_max {
+                return Err(fail());
+            }
         }
-    }
-    let (r, s) = h.at(p + x)?;
-    Ok((x, r, s))
+    };
+    let (r, s) = h.at(p + root)?;
+    Ok((root, r, s))
 }
 
 #[cfg(test)]
@@ -433,7 +477,7 @@ mod tests {
 
     fn law(h: f64) -> VonMises {
         let e = 200_000.0;
-        VonMises { e, nu: 0.3, hardening: Some(Hardening::linear(e, h, 200.0).unwrap()) }
+        VonMises::new(e, 0.3, Some(Hardening::linear(e, h, 200.0).unwrap()))
     }
 
     /// A uniaxial stress path in 3D, driven by the strains of uniaxial stress: σ = SY + E_T (ε − SY/E).
@@ -500,7 +544,7 @@ mod tests {
     #[test]
     fn consistent_tangent_matches_finite_differences() {
         let (hc, e) = Hardening::traction(&[1e-3, 3e-3, 1e-2], &[200.0, 260.0, 300.0], Beyond::Linear).unwrap();
-        let laws = [law(10_000.0), VonMises { e, nu: 0.25, hardening: Some(hc) }];
+        let laws = [law(10_000.0), VonMises::new(e, 0.25, Some(hc))];
         for l in &laws {
             for kind in [Kind::Solid, Kind::Plane] {
                 let n = kind.ncomp();

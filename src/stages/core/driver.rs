@@ -56,6 +56,11 @@ pub struct Driver<'a, P: Physics> {
     /// The largest reference force of the converged steps (the relative criterion's fallback when the
     /// reactions vanish, for a physics that asks for it).
     ref_hist: Cell<f64>,
+    /// For a physics that swaps to the absolute criterion ([`Physics::swaps_to_absolute`]): the smallest
+    /// reference force of the converged states (NaN before the first), and the absolute residual of the
+    /// last converged state.
+    load_min: Cell<f64>,
+    last_abs: Cell<f64>,
 }
 
 /// What every assembly of a step shares.
@@ -94,6 +99,8 @@ impl<'a, P: Physics> Driver<'a, P> {
             analysis: RefCell::new(None),
             kept: RefCell::new(None),
             ref_hist: Cell::new(0.0),
+            load_min: Cell::new(f64::NAN),
+            last_abs: Cell::new(0.0),
         }
     }
 
@@ -535,14 +542,30 @@ impl<'a, P: Physics> Driver<'a, P> {
             let (rel, abs, reference, vanished) = self.residual(&map, &free, &fr, &x0, &unew, &fint, &trial);
             history.push(rel);
             let solved = predicted || iters > 0;
+            // Code_Aster's swap: past the first step, vanishing loads turn RESI_GLOB_RELA into an absolute
+            // test at the last converged residual.
+            let swapped = self.phys.swaps_to_absolute() && {
+                if self.load_min.get().is_nan() {
+                    self.load_min.set(reference);
+                }
+                log.steps > 0 && self.cfg.conv.resi_rela.is_some() && reference <= 1e-6 * self.load_min.get()
+            };
             let done = if self.phys.linear() {
                 solved
+            } else if swapped {
+                solved && abs <= self.last_abs.get()
             } else {
                 solved
                     && self.cfg.conv.resi_rela.map(|tol| rel <= tol).unwrap_or(true)
                     && self.cfg.conv.resi_maxi.map(|tol| abs <= tol).unwrap_or(true)
             };
             if done {
+                if self.phys.swaps_to_absolute() {
+                    if !swapped {
+                        self.load_min.set(self.load_min.get().min(reference));
+                    }
+                    self.last_abs.set(abs);
+                }
                 *x = unew;
                 *state = trial;
                 log.steps += 1;

@@ -112,7 +112,7 @@ pub fn von_mises_of(m: &Material, relation: &str, cell: &str) -> Result<VonMises
     };
     let lib = |msg: String| Error::runtime(format!("cell {cell}: {msg}"));
     match relation {
-        "ELAS" => Ok(VonMises { e, nu, hardening: None }),
+        "ELAS" => Ok(VonMises::new(e, nu, None)),
         "VMIS_ISOT_LINE" => {
             let beh = if m.behaviours.contains_key("ECRO_LINE") { "ECRO_LINE" } else { "ECRO_LINE_FO" };
             if !m.behaviours.contains_key(beh) {
@@ -121,7 +121,7 @@ pub fn von_mises_of(m: &Material, relation: &str, cell: &str) -> Result<VonMises
                 )));
             }
             let h = Hardening::linear(e, need(beh, "D_SIGM_EPSI")?, need(beh, "SY")?).map_err(lib)?;
-            Ok(VonMises { e, nu, hardening: Some(h) })
+            Ok(VonMises::new(e, nu, Some(h)))
         }
         "VMIS_ISOT_TRAC" => {
             let Some(MatValue::Func(c)) = m.behaviours.get("TRACTION").and_then(|b| b.get("SIGM")) else {
@@ -145,7 +145,7 @@ pub fn von_mises_of(m: &Material, relation: &str, cell: &str) -> Result<VonMises
                 Prol::Lineaire => Beyond::Linear,
             };
             let (h, e_curve) = Hardening::traction(&f.x, &f.y, beyond).map_err(lib)?;
-            Ok(VonMises { e: e_curve, nu, hardening: Some(h) })
+            Ok(VonMises::new(e_curve, nu, Some(h)))
         }
         other => Err(Error::unsupported(format!("RELATION='{other}' is not supported yet"))),
     }
@@ -264,6 +264,8 @@ pub fn plastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Plastic> {
                         let b = cfg.behaviours.last().expect("a plastic relation was given");
                         b.err("RELATION", err.msg)
                     })?;
+                    let b = cfg.behaviours.last().expect("a plastic relation was given");
+                    let l = VonMises { resi_inte: b.resi_inte, iter_inte: b.iter_inte, ..l };
                     cache.push((key, l.clone()));
                     l
                 }
@@ -273,7 +275,10 @@ pub fn plastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Plastic> {
     }
     let mut relations: Vec<String> = cfg.behaviours.iter().map(|b| format!("'{}'", b.relation)).collect();
     relations.dedup();
-    Plastic::new(e, &laws, relations.join(", ")).map_err(|err| err.at(cfg.span))
+    let mut p = Plastic::new(e, &laws, relations.join(", ")).map_err(|err| err.at(cfg.span))?;
+    p.elastic_prediction = cfg.matrices.prediction_elastic;
+    p.elastic_correction = cfg.matrices.correction_elastic;
+    Ok(p)
 }
 
 /// The thermal strain of the material field's AFFE_VARC (NOM_VARC='TEMP') on the problem's bulk cells:

@@ -75,6 +75,10 @@ pub struct Behaviour {
     pub relation: String,
     pub kit: Vec<String>,
     pub deformation: Option<String>,
+    /// RESI_INTE (or RESI_INTE_RELA; 1e-6 when absent) and ITER_INTE_MAXI (20 when absent): the controls of
+    /// a law integrated iteratively.
+    pub resi_inte: f64,
+    pub iter_inte: usize,
     /// Where RELATION and RELATION_KIT were given.
     relation_span: Span,
     kit_span: Span,
@@ -87,6 +91,50 @@ impl Behaviour {
         let span = if kw == "RELATION_KIT" { self.kit_span } else { self.relation_span };
         Error::runtime(format!("COMPORTEMENT/{kw}: {}", msg.into())).at(span)
     }
+}
+
+/// NEWTON's choice of matrices (STAT_NON_LINE on mechanics): the elastic one instead of the tangent for
+/// the prediction (PREDICTION='ELASTIQUE') and for the corrections (MATRICE='ELASTIQUE').
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Matrices {
+    pub prediction_elastic: bool,
+    pub correction_elastic: bool,
+}
+
+/// STAT_NON_LINE's NEWTON on mechanics, as Code_Aster's `nmdomt` reads it: MATRICE (TANGENTE by default,
+/// or ELASTIQUE), PREDICTION (MATRICE's when absent; TANGENTE or ELASTIQUE — EXTRAPOLE and DEPL_CALCULE
+/// stop by name), REAC_ITER (1), REAC_INCR (1; another value only with an elastic prediction, whose matrix
+/// does not change), MATR_RIGI_SYME (our matrices are symmetric); PAS_MINI_ELAS and REAC_ITER_ELAS stop
+/// by name. The line of the run log, the matrices and REAC_ITER.
+fn mechanics_newton(a: &Args) -> Result<(Option<String>, Matrices, usize)> {
+    let Some(nw) = a.fact("NEWTON") else { return Ok((None, Matrices::default(), 1)) };
+    let matrice = nw.text("MATRICE").unwrap_or("TANGENTE").to_string();
+    let prediction = nw.text("PREDICTION").unwrap_or(&matrice).to_string();
+    if !["TANGENTE", "ELASTIQUE"].contains(&prediction.as_str()) {
+        return Err(
+            nw.err("PREDICTION", format!("PREDICTION='{prediction}' is not supported yet (TANGENTE, ELASTIQUE are)"))
+        );
+    }
+    let m = Matrices { prediction_elastic: prediction == "ELASTIQUE", correction_elastic: matrice == "ELASTIQUE" };
+    let reac_iter = nw.int("REAC_ITER").unwrap_or(1).max(0) as usize;
+    let reac_incr = nw.int("REAC_INCR").unwrap_or(1);
+    if reac_incr != 1 && !m.prediction_elastic {
+        return Err(nw.err("REAC_INCR", "REAC_INCR other than 1 with a tangent prediction is not supported yet"));
+    }
+    if nw.given("PAS_MINI_ELAS") {
+        return Err(nw.err("PAS_MINI_ELAS", "not supported yet"));
+    }
+    if nw.int("REAC_ITER_ELAS").is_some_and(|r| r != 0) {
+        return Err(nw.err("REAC_ITER_ELAS", "not supported yet"));
+    }
+    let _ = nw.text("MATR_RIGI_SYME");
+    let asked: Vec<String> = nw.items.iter().filter(|i| !i.defaulted).map(|i| i.name.clone()).collect();
+    let note = (!asked.is_empty()).then(|| {
+        format!(
+            "    NEWTON    : PREDICTION='{prediction}', MATRICE='{matrice}', REAC_ITER={reac_iter}, REAC_INCR={reac_incr}"
+        )
+    });
+    Ok((note, m, reac_iter))
 }
 
 /// ETAT_INIT: a stored step of a result (EVOL_NOLI, by NUME_ORDRE or INST) or fields (DEPL, SIGM, VARI).
@@ -167,6 +215,8 @@ pub struct Settings {
     pub sief: bool,
     /// RECH_LINEAIRE along each Newton correction but the first of a step.
     pub line_search: Option<LineSearch>,
+    /// NEWTON PREDICTION and MATRICE on mechanics: which steps use the elastic matrix.
+    pub matrices: Matrices,
     /// NEWTON REAC_ITER: the corrections whose number is a multiple of it assemble the tangent again (1:
     /// every one; 0: none, the prediction's matrix serves the whole step).
     pub reac_iter: usize,
@@ -274,7 +324,13 @@ impl Settings {
             true
         };
         let conv = if statics { Convergence::default() } else { Convergence::from_args(a)? };
-        let newton_note = if statics { None } else { super::newton::newton_note(a) };
+        let (newton_note, matrices, reac_iter) = if statics {
+            (None, Matrices::default(), 1)
+        } else if physics == PhysicsKind::Elastic {
+            mechanics_newton(a)?
+        } else {
+            (super::newton::newton_note(a), Matrices::default(), 1)
+        };
         let solveur = solveur(a)?;
         let (times, subdivision) = if statics {
             match a.concept("LIST_INST") {
@@ -318,7 +374,8 @@ impl Settings {
             contact,
             sief,
             line_search,
-            reac_iter: 1,
+            matrices,
+            reac_iter,
             heat: None,
         })
     }
@@ -474,11 +531,23 @@ fn behaviours(a: &Args) -> Result<Vec<Behaviour>> {
     let mut out = Vec::new();
     for occ in a.facts("COMPORTEMENT") {
         occ.refuse(&["GROUP_MA", "MAILLE"])?;
-        for k in ["ITER_INTE_MAXI", "ITER_INTE_PAS", "RESI_INTE_RELA", "RESI_INTE", "ALGO_INTE"] {
+        // TOUT='OUI' is the whole model: what an occurrence without GROUP_MA or MAILLE covers.
+        if occ.declares("TOUT") {
+            occ.has("TOUT");
+        }
+        for k in ["ITER_INTE_PAS", "RESI_INTE_MAXI", "ALGO_INTE"] {
             if occ.declares(k) {
                 occ.has(k);
             }
         }
+        // The controls of an iterative return (the plane-stress one of the von Mises laws).
+        let resi_inte = ["RESI_INTE", "RESI_INTE_RELA"]
+            .iter()
+            .filter(|k| occ.declares(k))
+            .find_map(|k| occ.real(k))
+            .unwrap_or(1e-6);
+        let iter_inte = if occ.declares("ITER_INTE_MAXI") { occ.int("ITER_INTE_MAXI") } else { None }
+            .map_or(20, |i| i.unsigned_abs() as usize);
         let deformation = occ.text("DEFORMATION").map(str::to_string);
         if deformation.as_deref().is_some_and(|d| d != "PETIT") {
             return Err(occ.err("DEFORMATION", "only DEFORMATION='PETIT' is supported yet"));
@@ -487,6 +556,8 @@ fn behaviours(a: &Args) -> Result<Vec<Behaviour>> {
             relation: occ.text("RELATION").unwrap_or("ELAS").to_string(),
             kit: occ.texts("RELATION_KIT"),
             deformation,
+            resi_inte,
+            iter_inte,
             relation_span: occ.span_of("RELATION"),
             kit_span: occ.span_of("RELATION_KIT"),
         });

@@ -101,6 +101,22 @@ pub fn siro_elem(p: &Problem, model: &ConceptRef, depl: &[f64], only: &dyn Fn(&u
 
 // ------------------------------------------------------------------ CALC_CHAMP
 
+/// The points of a cell's `*_ELGA` values of `n` components.
+fn points_of(v: &[f64], n: usize) -> Vec<[f64; 6]> {
+    v.chunks(n)
+        .map(|c| {
+            let mut p = [0.0; 6];
+            p[..n.min(6)].copy_from_slice(&c[..n.min(6)]);
+            p
+        })
+        .collect()
+}
+
+/// The first `n` components of each point, flattened.
+fn flat(v: &[[f64; 6]], n: usize) -> Vec<f64> {
+    v.iter().flat_map(|p| p[..n].to_vec()).collect()
+}
+
 /// The steps CALC_CHAMP is asked for.
 enum Asked {
     All,
@@ -173,6 +189,14 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         "SIRO_ELEM",
         "SIEQ_ELNO",
         "SIEQ_NOEU",
+        "SIEQ_ELGA",
+        "SIEF_ELNO",
+        "SIEF_NOEU",
+        "EPSP_ELGA",
+        "EPSP_ELNO",
+        "VARI_ELNO",
+        "VARI_NOEU",
+        "FORC_NODA",
     ];
     let rc = a.req_concept("RESULTAT")?;
     let (model, chmat, mut steps) = {
@@ -202,7 +226,7 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let kws: &[&str] = if hm {
         &["CONTRAINTE", "DEFORMATION", "CRITERES", "VARI_INTERNE"]
     } else {
-        &["CONTRAINTE", "DEFORMATION", "CRITERES"]
+        &["CONTRAINTE", "DEFORMATION", "CRITERES", "VARI_INTERNE", "FORCE"]
     };
     for kw in kws {
         for o in a.texts(kw) {
@@ -213,9 +237,9 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             wanted.push(o);
         }
     }
-    a.refuse(&["ENERGIE", "FORCE", "ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"])?;
-    if !hm {
-        a.refuse(&["VARI_INTERNE"])?;
+    a.refuse(&["ENERGIE", "ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"])?;
+    if hm {
+        a.refuse(&["FORCE"])?;
     }
     let mesh = model.model()?.current_mesh();
     let restrict = if a.has("GROUP_MA") || a.has("MAILLE") {
@@ -278,9 +302,34 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let Some(Field::Node { values: depl, .. }) = step.fields.get("DEPL") else {
             return Err(a.err("RESULTAT", format!("no DEPL at order {}", step.nume_ordre)));
         };
+        // A result of a plastic law holds its stresses and internal variables at the points: the fields
+        // of stresses come from them (extrapolated to the nodes as Code_Aster's ELNO options do), the
+        // others from DEPL.
+        let stored = |name: &str| match step.fields.get(name) {
+            Some(Field::Elga { cells, .. }) if step.fields.contains_key("VARI_ELGA") => Some(cells.clone()),
+            _ => None,
+        };
+        let (plastic_sig, plastic_vari) = (stored("SIEF_ELGA"), stored("VARI_ELGA"));
+        let vari_names: Vec<String> = step.fields.get("VARI_ELGA").map(|f| f.components().to_vec()).unwrap_or_default();
+        if plastic_vari.is_none() {
+            if let Some(o) = wanted.iter().find(|o| o.starts_with("VARI_") || o.starts_with("EPSP_")) {
+                return Err(a.err(
+                    if o.starts_with("VARI_") { "VARI_INTERNE" } else { "DEFORMATION" },
+                    format!(
+                        "{o}: result {} holds no internal variables (VARI_ELGA) at order {}",
+                        rc.label(),
+                        step.nume_ordre
+                    ),
+                ));
+            }
+        }
         let ns = md.nsig();
         let (mut sig_elno, mut eps_elno) = (vec![None; mesh.cells.len()], vec![None; mesh.cells.len()]);
         let (mut sig_elga, mut eps_elga) = (vec![None; mesh.cells.len()], vec![None; mesh.cells.len()]);
+        let (mut epsp_elga, mut epsp_elno) = (vec![None; mesh.cells.len()], vec![None; mesh.cells.len()]);
+        let mut vari_elno = vec![None; mesh.cells.len()];
+        // FORC_NODA on the nodes of the model (NaN elsewhere, as DEPL).
+        let mut forc_noda: Vec<f64> = depl.iter().map(|v| if v.is_finite() { 0.0 } else { f64::NAN }).collect();
         for &c in p.bulk.iter().filter(|c| only(c)) {
             let ue: Vec<f64> =
                 mesh.cells[c].iter().flat_map(|&n| (0..md.dim()).map(move |k| depl[n * md.dim() + k])).collect();
@@ -296,6 +345,56 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 .map_err(|e| Error::runtime(e.to_string()))?;
             sig_elga[c] = Some(g.sig.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
             eps_elga[c] = Some(g.eps.iter().flat_map(|s| s[..ns].to_vec()).collect::<Vec<_>>());
+            if let Some(sv) = plastic_sig.as_ref().and_then(|p| p[c].as_ref()) {
+                let t = mesh.cell_types[c];
+                if sv.len() != g.sig.len() * ns {
+                    return Err(a.err(
+                        "RESULTAT",
+                        format!("SIEF_ELGA of cell {} does not have its {} points", mesh.cell_names[c], g.sig.len()),
+                    ));
+                }
+                let pts = points_of(sv, ns);
+                sig_elno[c] = Some(flat(&elasticity::gauss_to_nodes(md, t, &pts, ns), ns));
+                sig_elga[c] = Some(sv.clone());
+                if let Some(v) = plastic_vari.as_ref().and_then(|p| p[c].as_ref()) {
+                    let nv = vari_names.len();
+                    vari_elno[c] = Some(flat(&elasticity::gauss_to_nodes(md, t, &points_of(v, nv), nv), nv));
+                }
+                if wanted.iter().any(|o| o.starts_with("EPSP_")) {
+                    if md == Modelisation::CPlan {
+                        return Err(a.err("DEFORMATION", "EPSP_ELGA and EPSP_ELNO under C_PLAN are not supported yet"));
+                    }
+                    // ε_p = ε − S σ, S the compliance of ELAS.
+                    let (e, nu) = (mat.e, mat.nu);
+                    let ep: Vec<[f64; 6]> = g
+                        .eps
+                        .iter()
+                        .zip(&pts)
+                        .map(|(eps, sg)| {
+                            let tr = sg[0] + sg[1] + sg[2];
+                            let mut out = [0.0; 6];
+                            for k in 0..ns {
+                                let elastic =
+                                    if k < 3 { ((1.0 + nu) * sg[k] - nu * tr) / e } else { (1.0 + nu) / e * sg[k] };
+                                out[k] = eps[k] - elastic;
+                            }
+                            out
+                        })
+                        .collect();
+                    epsp_elga[c] = Some(flat(&ep, ns));
+                    epsp_elno[c] = Some(flat(&elasticity::gauss_to_nodes(md, t, &ep, ns), ns));
+                }
+            }
+            if wanted.iter().any(|o| o == "FORC_NODA") {
+                let sv = sig_elga[c].as_ref().expect("computed above");
+                let f = elasticity::internal_forces(md, mesh.cell_types[c], &xs, &points_of(sv, ns))
+                    .map_err(|e| Error::runtime(format!("cell {}: {e}", mesh.cell_names[c])))?;
+                for (i, &n) in mesh.cells[c].iter().enumerate() {
+                    for k in 0..md.dim() {
+                        forc_noda[n * md.dim() + k] += f[i * md.dim() + k];
+                    }
+                }
+            }
         }
         if thermal.is_some() && wanted.iter().any(|o| o == "SIRO_ELEM") {
             return Err(a.err("CONTRAINTE", "SIRO_ELEM with AFFE_VARC's thermal strain is not supported yet"));
@@ -308,7 +407,25 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let en: Vec<String> = md.epsilon_names().iter().map(|s| s.to_string()).collect();
         for o in &wanted {
             let f = match o.as_str() {
-                "SIGM_ELNO" => Field::Elno { components: sn.clone(), cells: sig_elno.clone() },
+                "SIGM_ELNO" | "SIEF_ELNO" => Field::Elno { components: sn.clone(), cells: sig_elno.clone() },
+                "SIEF_NOEU" => Field::Node { components: sn.clone(), values: to_nodes(mesh, &sig_elno, ns) },
+                "EPSP_ELGA" => Field::Elga { components: en.clone(), cells: epsp_elga.clone() },
+                "EPSP_ELNO" => Field::Elno { components: en.clone(), cells: epsp_elno.clone() },
+                "VARI_ELNO" => Field::Elno { components: vari_names.clone(), cells: vari_elno.clone() },
+                "VARI_NOEU" => {
+                    Field::Node { components: vari_names.clone(), values: to_nodes(mesh, &vari_elno, vari_names.len()) }
+                }
+                "FORC_NODA" => Field::Node {
+                    components: ["DX", "DY", "DZ"][..md.dim()].iter().map(|s| s.to_string()).collect(),
+                    values: forc_noda.clone(),
+                },
+                "SIEQ_ELGA" => Field::Elga {
+                    components: SIEQ_COMPONENTS.iter().map(|s| s.to_string()).collect(),
+                    cells: sig_elga
+                        .iter()
+                        .map(|c| c.as_ref().map(|v| v.chunks(ns).flat_map(equivalent_stresses).collect()))
+                        .collect(),
+                },
                 "EPSI_ELNO" => Field::Elno { components: en.clone(), cells: eps_elno.clone() },
                 "SIGM_NOEU" => Field::Node { components: sn.clone(), values: to_nodes(mesh, &sig_elno, ns) },
                 "EPSI_NOEU" => Field::Node { components: en.clone(), values: to_nodes(mesh, &eps_elno, ns) },

@@ -314,6 +314,7 @@ pub(super) fn read(a: &Args, command: Command, model: ConceptRef) -> Result<Sett
         contact: None,
         sief: false,
         line_search,
+        matrices: Default::default(),
         reac_iter,
         heat: Some(HeatSettings { nonlinear, theta, initial, reuse, store_initial }),
     })
