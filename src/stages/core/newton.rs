@@ -343,12 +343,14 @@ pub struct LineSearch {
 }
 
 impl LineSearch {
+    /// ρ within [RHO_MIN, RHO_MAX], and out of the exclusion zone, decided on the secant's own value as
+    /// Code_Aster's `zbinte` does (a small negative secant gives −RHO_EXCL).
     fn limits(&self, rho: f64) -> f64 {
         let mut r = rho.clamp(self.rho_min, self.rho_max);
-        if (-self.rho_excl..0.0).contains(&r) {
+        if (-self.rho_excl..0.0).contains(&rho) {
             r = -self.rho_excl;
         }
-        if (0.0..=self.rho_excl).contains(&r) {
+        if (0.0..=self.rho_excl).contains(&rho) {
             r = self.rho_excl;
         }
         r

@@ -361,10 +361,8 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                     vari_elno[c] = Some(flat(&elasticity::gauss_to_nodes(md, t, &points_of(v, nv), nv), nv));
                 }
                 if wanted.iter().any(|o| o.starts_with("EPSP_")) {
-                    if md == Modelisation::CPlan {
-                        return Err(a.err("DEFORMATION", "EPSP_ELGA and EPSP_ELNO under C_PLAN are not supported yet"));
-                    }
-                    // ε_p = ε − S σ, S the compliance of ELAS.
+                    // ε_p = ε − S σ, S the compliance of ELAS (under C_PLAN, ε_zz the elastic estimate
+                    // −ν/(1−ν) (ε_xx + ε_yy) of the displacement, as Code_Aster's te0334).
                     let (e, nu) = (mat.e, mat.nu);
                     let ep: Vec<[f64; 6]> = g
                         .eps
