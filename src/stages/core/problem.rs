@@ -237,35 +237,45 @@ pub fn elastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Elastic> {
 
 /// The plastic physics of STAT_NON_LINE's model and material field: the elastic problem (its unknowns and
 /// loads) with the law of COMPORTEMENT's relation on every bulk cell (the occurrences apply in their
-/// order, a later one over an earlier one).
+/// order, a later one over an earlier one on the cells they share; ELAS where none applies).
 pub fn plastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Plastic> {
     if super::settings::has_varc(chmat) {
         return Err(cfg.err("CHAM_MATER", "AFFE_VARC with a plastic behaviour is not supported yet"));
     }
     let e = elastic(cfg, chmat)?.storing_stresses(false);
+    // The occurrence of COMPORTEMENT that decides each cell's law.
+    let mut which: Vec<Option<usize>> = vec![None; e.mesh.cells.len()];
+    for (k, b) in cfg.behaviours.iter().enumerate() {
+        match &b.cells {
+            Some(cells) => cells.iter().for_each(|&c| which[c] = Some(k)),
+            None => which.iter_mut().for_each(|w| *w = Some(k)),
+        }
+    }
     let mut laws: Vec<Option<VonMises>> = vec![None; e.mesh.cells.len()];
-    // COMPORTEMENT applies to the whole model (the settings refuse it on part of it).
-    let relation = cfg.behaviours.last().map_or("ELAS", |b| b.relation.as_str());
     {
         let data = chmat.data();
         let ConceptData::MaterialField(MaterialField { cells, .. }) = &*data else {
             return Err(cfg.err("CHAM_MATER", format!("{} holds no material field", chmat.label())));
         };
-        let mut cache: Vec<((*const crate::concepts::Concept, String), VonMises)> = Vec::new();
+        let mut cache: Vec<((*const crate::concepts::Concept, Option<usize>), VonMises)> = Vec::new();
         for &c in &e.bulk {
             let mc = cells[c].as_ref().expect("the elastic problem checked every bulk cell's material");
-            let key = (Rc::as_ptr(mc), relation.to_string());
+            let key = (Rc::as_ptr(mc), which[c]);
             let law = match cache.iter().find(|(k, _)| *k == key) {
                 Some((_, l)) => l.clone(),
                 None => {
                     let md = mc.data();
                     let ConceptData::Material(mat) = &*md else { unreachable!("AFFE_MATERIAU holds materials") };
-                    let l = von_mises_of(mat, relation, &e.mesh.cell_names[c]).map_err(|err| {
-                        let b = cfg.behaviours.last().expect("a plastic relation was given");
-                        b.err("RELATION", err.msg)
+                    let b = which[c].map(|k| &cfg.behaviours[k]);
+                    let relation = b.map_or("ELAS", |b| b.relation.as_str());
+                    let l = von_mises_of(mat, relation, &e.mesh.cell_names[c]).map_err(|err| match b {
+                        Some(b) => b.err("RELATION", err.msg),
+                        None => err.at(cfg.span),
                     })?;
-                    let b = cfg.behaviours.last().expect("a plastic relation was given");
-                    let l = VonMises { resi_inte: b.resi_inte, iter_inte: b.iter_inte, ..l };
+                    let l = match b {
+                        Some(b) => VonMises { resi_inte: b.resi_inte, iter_inte: b.iter_inte, ..l },
+                        None => l,
+                    };
                     cache.push((key, l.clone()));
                     l
                 }
@@ -273,8 +283,13 @@ pub fn plastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Plastic> {
             laws[c] = Some(law);
         }
     }
-    let mut relations: Vec<String> = cfg.behaviours.iter().map(|b| format!("'{}'", b.relation)).collect();
-    relations.dedup();
+    let mut relations: Vec<String> = Vec::new();
+    for b in &cfg.behaviours {
+        let r = format!("'{}'", b.relation);
+        if !relations.contains(&r) {
+            relations.push(r);
+        }
+    }
     let mut p = Plastic::new(e, &laws, relations.join(", ")).map_err(|err| err.at(cfg.span))?;
     p.elastic_prediction = cfg.matrices.prediction_elastic;
     p.elastic_correction = cfg.matrices.correction_elastic;

@@ -75,6 +75,8 @@ pub struct Behaviour {
     pub relation: String,
     pub kit: Vec<String>,
     pub deformation: Option<String>,
+    /// The cells of GROUP_MA / MAILLE; None for the whole model.
+    pub cells: Option<Vec<usize>>,
     /// RESI_INTE (or RESI_INTE_RELA; 1e-6 when absent) and ITER_INTE_MAXI (20 when absent): the controls of
     /// a law integrated iteratively.
     pub resi_inte: f64,
@@ -304,7 +306,7 @@ impl Settings {
             excit.push(Excit { load, fonc_mult, span: occ.span, fonc_mult_span: occ.span_of("FONC_MULT") });
         }
         let initial = if a.declares("ETAT_INIT") { initial_state(a, &takes, &model, &mut sites)? } else { None };
-        let behaviours = if a.declares("COMPORTEMENT") { behaviours(a)? } else { Vec::new() };
+        let behaviours = if a.declares("COMPORTEMENT") { behaviours(a, physics, &model)? } else { Vec::new() };
         let (theta, schema_thm) = match a.declares("SCHEMA_THM").then(|| a.fact("SCHEMA_THM")).flatten() {
             Some(s) => {
                 // PARM_ALPHA weighs the thermal terms of other laws; saturated HM without temperature has none.
@@ -525,12 +527,21 @@ fn line_search(a: &Args) -> Result<Option<LineSearch>> {
     Ok((ls.iter_max > 0).then_some(ls))
 }
 
-/// COMPORTEMENT, typed; the controls of the local integration are read here: the laws we compute
-/// integrate in closed form, so they have no effect. COMPORTEMENT on part of the model is refused.
-fn behaviours(a: &Args) -> Result<Vec<Behaviour>> {
+/// COMPORTEMENT, typed, with the cells of each occurrence (GROUP_MA, MAILLE: the plain mechanics alone
+/// takes COMPORTEMENT on part of the model; the others refuse it); the controls of the local
+/// integration are read here (the von Mises return under C_PLAN uses RESI_INTE and ITER_INTE_MAXI; the
+/// other laws integrate in closed form).
+fn behaviours(a: &Args, physics: PhysicsKind, model: &ConceptRef) -> Result<Vec<Behaviour>> {
     let mut out = Vec::new();
     for occ in a.facts("COMPORTEMENT") {
-        occ.refuse(&["GROUP_MA", "MAILLE"])?;
+        let part = ["GROUP_MA", "MAILLE"].iter().any(|k| occ.declares(k) && occ.has(k));
+        let cells = if part && physics == PhysicsKind::Elastic {
+            let m = model.model()?;
+            Some(crate::stages::select::select_cells(&m.current_mesh(), occ, &m.mesh_concept.label())?)
+        } else {
+            occ.refuse(&["GROUP_MA", "MAILLE"])?;
+            None
+        };
         // TOUT='OUI' is the whole model: what an occurrence without GROUP_MA or MAILLE covers.
         if occ.declares("TOUT") {
             occ.has("TOUT");
@@ -556,6 +567,7 @@ fn behaviours(a: &Args) -> Result<Vec<Behaviour>> {
             relation: occ.text("RELATION").unwrap_or("ELAS").to_string(),
             kit: occ.texts("RELATION_KIT"),
             deformation,
+            cells,
             resi_inte,
             iter_inte,
             relation_span: occ.span_of("RELATION"),
