@@ -366,10 +366,10 @@ impl VonMises {
                     d[k][l] -= col[k] * row[l] / d33;
                 }
             }
-            for k in 0..n {
-                d[k][2] = 0.0;
-                d[2][k] = 0.0;
+            for row in d.iter_mut().take(n) {
+                row[2] = 0.0;
             }
+            d[2] = [0.0; 6];
         }
         // Mandel to engineering shear: σ_xy = σ₄/√2 and ε₄ = γ/√2.
         for (k, row) in d.iter_mut().enumerate().take(n) {
