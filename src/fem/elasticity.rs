@@ -540,8 +540,49 @@ pub fn b_node(m: Modelisation, g: &GaussGeom, a: usize) -> [[f64; 3]; 6] {
     b
 }
 
-/// `K = ∫ Bᵀ D B` for any Hooke matrix `d` of `m` (anisotropic materials):
-/// `D B` is formed once per node and Gauss point.
+/// Add `w Bᵀ D B` of the point `g` of a cell of `nno` nodes to the element matrix `k` (row-major, dofs
+/// node by node), for any matrix `d` acting on engineering strains: `D B` is formed once per node.
+pub fn add_btdb(m: Modelisation, g: &GaussGeom, nno: usize, d: &[[f64; 6]; 6], k: &mut [f64]) {
+    let (dim, ns) = (m.dim(), m.nsig());
+    let nd = nno * dim;
+    let bs: Vec<_> = (0..nno).map(|a| b_node(m, g, a)).collect();
+    // db[b][p][j] = Σ_q D[p][q] B_b[q][j]
+    let db: Vec<[[f64; 3]; 6]> = bs
+        .iter()
+        .map(|bb| {
+            let mut out = [[0.0; 3]; 6];
+            for (p, row) in out.iter_mut().enumerate().take(ns) {
+                for (j, v) in row.iter_mut().enumerate().take(dim) {
+                    *v = (0..ns).map(|q| d[p][q] * bb[q][j]).sum();
+                }
+            }
+            out
+        })
+        .collect();
+    for a in 0..nno {
+        for b in 0..nno {
+            for i in 0..dim {
+                for j in 0..dim {
+                    let s: f64 = (0..ns).map(|p| bs[a][p][i] * db[b][p][j]).sum();
+                    k[(a * dim + i) * nd + b * dim + j] += g.w * s;
+                }
+            }
+        }
+    }
+}
+
+/// Add `w Bᵀ σ` of the point `g` of a cell of `nno` nodes to the element vector `f` (dofs node by node).
+pub fn add_bt_sigma(m: Modelisation, g: &GaussGeom, nno: usize, sig: &[f64; 6], f: &mut [f64]) {
+    let (dim, ns) = (m.dim(), m.nsig());
+    for a in 0..nno {
+        let b = b_node(m, g, a);
+        for i in 0..dim {
+            f[a * dim + i] += g.w * (0..ns).map(|p| b[p][i] * sig[p]).sum::<f64>();
+        }
+    }
+}
+
+/// `K = ∫ Bᵀ D B` for any Hooke matrix `d` of `m` (anisotropic materials).
 fn stiffness_general(
     m: Modelisation,
     d: &[[f64; 6]; 6],
@@ -550,34 +591,11 @@ fn stiffness_general(
 ) -> Result<Vec<f64>, ElementError> {
     let rule = rigi_rule_of(m, t);
     let gg = gauss_geometry(m, t, coords, &rule)?;
-    let (dim, ns, nno) = (m.dim(), m.nsig(), t.nnodes());
-    let nd = nno * dim;
+    let nno = t.nnodes();
+    let nd = nno * m.dim();
     let mut k = vec![0.0; nd * nd];
     for g in &gg {
-        let bs: Vec<_> = (0..nno).map(|a| b_node(m, g, a)).collect();
-        // db[b][p][j] = Σ_q D[p][q] B_b[q][j]
-        let db: Vec<[[f64; 3]; 6]> = bs
-            .iter()
-            .map(|bb| {
-                let mut out = [[0.0; 3]; 6];
-                for (p, row) in out.iter_mut().enumerate().take(ns) {
-                    for (j, v) in row.iter_mut().enumerate().take(dim) {
-                        *v = (0..ns).map(|q| d[p][q] * bb[q][j]).sum();
-                    }
-                }
-                out
-            })
-            .collect();
-        for a in 0..nno {
-            for b in 0..nno {
-                for i in 0..dim {
-                    for j in 0..dim {
-                        let s: f64 = (0..ns).map(|p| bs[a][p][i] * db[b][p][j]).sum();
-                        k[(a * dim + i) * nd + b * dim + j] += g.w * s;
-                    }
-                }
-            }
-        }
+        add_btdb(m, g, nno, d, &mut k);
     }
     Ok(k)
 }
@@ -762,15 +780,10 @@ pub fn internal_forces(
 ) -> Result<Vec<f64>, ElementError> {
     let rule = rigi_rule_of(m, t);
     let gg = gauss_geometry(m, t, coords, &rule)?;
-    let (dim, ns, nno) = (m.dim(), m.nsig(), t.nnodes());
-    let mut v = vec![0.0; nno * dim];
+    let nno = t.nnodes();
+    let mut v = vec![0.0; nno * m.dim()];
     for (g, s) in gg.iter().zip(sig) {
-        for a in 0..nno {
-            let b = b_node(m, g, a);
-            for i in 0..dim {
-                v[a * dim + i] += g.w * (0..ns).map(|p| b[p][i] * s[p]).sum::<f64>();
-            }
-        }
+        add_bt_sigma(m, g, nno, s, &mut v);
     }
     Ok(v)
 }

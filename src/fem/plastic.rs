@@ -163,7 +163,7 @@ impl Physics for Plastic {
         fint: &mut [f64],
     ) -> Result<State, Failure> {
         let md = self.elastic.modelisation;
-        let (dim, ns) = (md.dim(), md.nsig());
+        let dim = md.dim();
         let request = if step.predict { Request::Prediction } else { Request::Full };
         let elastic_matrix = if step.predict { self.elastic_prediction } else { self.elastic_correction };
         let mut states = Vec::with_capacity(prev.len());
@@ -186,36 +186,9 @@ impl Physics for Plastic {
                             self.elastic.mesh.cell_names[c]
                         )))
                     })?;
-                let bs: Vec<[[f64; 3]; 6]> = (0..nd / dim).map(|a| elasticity::b_node(md, g, a)).collect();
-                for (a, b) in bs.iter().enumerate() {
-                    for j in 0..dim {
-                        fe[a * dim + j] += g.w * (0..ns).map(|p| b[p][j] * st.sig[p]).sum::<f64>();
-                    }
-                }
+                elasticity::add_bt_sigma(md, g, nd / dim, &st.sig, &mut fe);
                 if let Some(ke) = ke.as_mut() {
-                    // D B per node, then Bᵀ (D B).
-                    let db: Vec<[[f64; 3]; 6]> = bs
-                        .iter()
-                        .map(|b| {
-                            let mut o = [[0.0; 3]; 6];
-                            for (p, row) in o.iter_mut().enumerate().take(ns) {
-                                for (j, v) in row.iter_mut().enumerate().take(dim) {
-                                    *v = (0..ns).map(|q| d[p][q] * b[q][j]).sum();
-                                }
-                            }
-                            o
-                        })
-                        .collect();
-                    for (a, ba) in bs.iter().enumerate() {
-                        for (bb, dbb) in db.iter().enumerate() {
-                            for r in 0..dim {
-                                for s in 0..dim {
-                                    let v: f64 = (0..ns).map(|p| ba[p][r] * dbb[p][s]).sum();
-                                    ke[(a * dim + r) * nd + bb * dim + s] += g.w * v;
-                                }
-                            }
-                        }
-                    }
+                    elasticity::add_btdb(md, g, nd / dim, &d, ke);
                 }
                 new_c.push(st);
             }

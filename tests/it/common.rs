@@ -222,3 +222,27 @@ pub fn study_err_l2(
     }
     errs
 }
+
+/// Run our scene `comm/<scene>.comm` with `edits` (from, to) applied, as `case.comm` in `dir`, its units
+/// mapped to files of `med/` (`units`: number, file): (exit code, stderr, .mess text).
+pub fn run_scene_edited(
+    dir: &Path,
+    scene: &str,
+    units: &[(u32, &str)],
+    edits: &[(&str, &str)],
+) -> (i32, String, String) {
+    let mut src = std::fs::read_to_string(root().join("comm").join(format!("{scene}.comm"))).unwrap();
+    for (from, to) in edits {
+        assert!(src.contains(from), "{scene}.comm no longer holds {from:?}");
+        src = src.replace(from, to);
+    }
+    std::fs::write(dir.join("case.comm"), src).unwrap();
+    let mut cmd = aster();
+    cmd.arg("run").arg(dir.join("case.comm")).args(["--out", dir.to_str().unwrap(), "-q"]);
+    for (n, file) in units {
+        cmd.arg("--unit").arg(format!("{n}={}", root().join("med").join(file).display()));
+    }
+    let out = cmd.output().unwrap();
+    let mess = std::fs::read_to_string(dir.join("case.mess")).unwrap_or_default();
+    (out.status.code().unwrap_or(-1), text(&out).1, mess)
+}

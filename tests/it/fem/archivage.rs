@@ -7,22 +7,7 @@ use crate::common::*;
 
 /// Run `comm/<scene>.comm` with `edit` applied (from, to), its mesh as unit 20: (exit code, stderr, mess).
 fn run_edited(tag: &str, scene: &str, mesh: &str, edits: &[(&str, &str)]) -> (i32, String, String) {
-    let dir = crate::scratch!(tag);
-    let mut src = std::fs::read_to_string(root().join("comm").join(format!("{scene}.comm"))).unwrap();
-    for (from, to) in edits {
-        assert!(src.contains(from), "{scene}.comm no longer holds {from:?}");
-        src = src.replace(from, to);
-    }
-    std::fs::write(dir.join("case.comm"), src).unwrap();
-    let out = aster()
-        .arg("run")
-        .arg(dir.join("case.comm"))
-        .args(["--out", dir.to_str().unwrap(), "-q", "--unit"])
-        .arg(format!("20={}", root().join("med").join(mesh).display()))
-        .output()
-        .unwrap();
-    let mess = std::fs::read_to_string(dir.join("case.mess")).unwrap_or_default();
-    (out.status.code().unwrap_or(-1), text(&out).1, mess)
+    run_scene_edited(&crate::scratch!(tag), scene, &[(20, mesh)], edits)
 }
 
 fn ok_lines(mess: &str) -> usize {

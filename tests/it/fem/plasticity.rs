@@ -33,23 +33,9 @@ fn corpus_von_mises_cases_pass() {
 
 /// Run comm/plastic_bar.comm with `edits` applied: (exit code, stderr).
 fn run_edited(tag: &str, edits: &[(&str, &str)]) -> (i32, String) {
-    let dir = crate::scratch!(tag);
-    let mut src = std::fs::read_to_string(root().join("comm/plastic_bar.comm")).unwrap();
-    for (from, to) in edits {
-        assert!(src.contains(from), "plastic_bar.comm no longer holds {from:?}");
-        src = src.replace(from, to);
-    }
-    std::fs::write(dir.join("case.comm"), src).unwrap();
-    let out = aster()
-        .arg("run")
-        .arg(dir.join("case.comm"))
-        .args(["--out", dir.to_str().unwrap(), "-q", "--unit"])
-        .arg(format!("20={}", root().join("med/block_hexa20.med").display()))
-        .arg("--unit")
-        .arg(format!("21={}", root().join("med/bar_quad8.med").display()))
-        .output()
-        .unwrap();
-    (out.status.code().unwrap_or(-1), text(&out).1)
+    let units = [(20, "block_hexa20.med"), (21, "bar_quad8.med")];
+    let (code, err, _) = run_scene_edited(&crate::scratch!(tag), "plastic_bar", &units, edits);
+    (code, err)
 }
 
 /// What the plastic laws do not take stops the run by name: another line search, large strains, a
