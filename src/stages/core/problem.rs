@@ -168,8 +168,8 @@ pub fn problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<Problem> {
     for (c, e) in m.elements.iter().enumerate() {
         let Some(e) = e else { continue };
         let Some(md) = e.modelisation.mechanics().filter(|_| !e.modelisation.is_hm()) else {
-            return Err(Error::runtime(format!(
-                "MODELISATION='{}' is not supported yet by this command (3D, D_PLAN, C_PLAN, AXIS are)",
+            return Err(Error::unsupported(format!(
+                "AFFE_MODELE/MODELISATION: MODELISATION='{}' is not supported yet by this command (3D, D_PLAN, C_PLAN, AXIS are)",
                 e.modelisation
             )));
         };

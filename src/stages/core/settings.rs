@@ -270,8 +270,9 @@ impl Settings {
                 .filter(|k| !takes.keywords.contains(k))
                 .collect();
             a.refuse(&refused)?;
-            if a.text("METHODE").is_some_and(|m| m != "NEWTON") {
-                return Err(a.err("METHODE", "only METHODE='NEWTON' is supported yet"));
+            if let Some(m) = a.text("METHODE").filter(|m| *m != "NEWTON") {
+                return Err(Error::unsupported(format!("METHODE: METHODE='{m}' is not supported yet (NEWTON is)"))
+                    .at(a.span_of("METHODE")));
             }
         }
         let chmat = a.concept("CHAM_MATER");
@@ -560,8 +561,11 @@ fn behaviours(a: &Args, physics: PhysicsKind, model: &ConceptRef) -> Result<Vec<
         let iter_inte = if occ.declares("ITER_INTE_MAXI") { occ.int("ITER_INTE_MAXI") } else { None }
             .map_or(20, |i| i.unsigned_abs() as usize);
         let deformation = occ.text("DEFORMATION").map(str::to_string);
-        if deformation.as_deref().is_some_and(|d| d != "PETIT") {
-            return Err(occ.err("DEFORMATION", "only DEFORMATION='PETIT' is supported yet"));
+        if let Some(d) = deformation.as_deref().filter(|d| *d != "PETIT") {
+            return Err(Error::unsupported(format!(
+                "COMPORTEMENT/DEFORMATION: DEFORMATION='{d}' is not supported yet (PETIT is)"
+            ))
+            .at(occ.span_of("DEFORMATION")));
         }
         out.push(Behaviour {
             relation: occ.text("RELATION").unwrap_or("ELAS").to_string(),
