@@ -52,6 +52,18 @@ pub struct ResultData {
 }
 
 impl ResultData {
+    /// The same result (model, material, characteristics, loads) with other steps: what a command that
+    /// adds fields to a result's steps (CALC_CHAMP) produces.
+    pub fn with_steps(&self, steps: Vec<Step>) -> ResultData {
+        ResultData {
+            model: self.model.clone(),
+            material: self.material.clone(),
+            cara_elem: self.cara_elem.clone(),
+            loads: self.loads.clone(),
+            steps,
+        }
+    }
+
     /// The step with this order number.
     pub fn by_order(&self, n: i64) -> Option<&Step> {
         self.steps.iter().find(|s| s.nume_ordre == n)

@@ -277,13 +277,7 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             ));
         }
         let r = rc.result()?;
-        let data = ResultData {
-            model: r.model.clone(),
-            material: r.material.clone(),
-            cara_elem: r.cara_elem.clone(),
-            loads: r.loads.clone(),
-            steps,
-        };
+        let data = r.with_steps(steps);
         return Ok(Some(ConceptData::Result(data)));
     }
     let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
@@ -448,13 +442,7 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         }
     }
     let r = rc.result()?;
-    let data = ResultData {
-        model: r.model.clone(),
-        material: r.material.clone(),
-        cara_elem: r.cara_elem.clone(),
-        loads: r.loads.clone(),
-        steps,
-    };
+    let data = r.with_steps(steps);
     Ok(Some(ConceptData::Result(data)))
 }
 

@@ -5,7 +5,7 @@
 //! step's instant and at the points' temperatures.
 
 use crate::catalog::args::Args;
-use crate::concepts::result::{Field, ResultData, Step};
+use crate::concepts::result::{Field, Step};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::Result;
 use crate::stages::core::heat::thermal_problem;
@@ -85,12 +85,6 @@ pub fn calc_champ_ther(
         }
     }
     let r = rc.result()?;
-    let data = ResultData {
-        model: r.model.clone(),
-        material: r.material.clone(),
-        cara_elem: r.cara_elem.clone(),
-        loads: r.loads.clone(),
-        steps,
-    };
+    let data = r.with_steps(steps);
     Ok(Some(ConceptData::Result(data)))
 }

@@ -206,16 +206,7 @@ pub fn test_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                     }
                     None => {
                         let v = locate(field, k, &mesh, occ, &mesh_name)?;
-                        let mut w = Vec::new();
-                        for kw in ["NOEUD", "GROUP_NO", "MAILLE", "GROUP_MA"] {
-                            if let Some(t) = occ.text(kw) {
-                                w.push(format!("{kw} {t}"));
-                            }
-                        }
-                        if let Some(p) = occ.declares("POINT").then(|| occ.int("POINT")).flatten() {
-                            w.push(format!("POINT {p}"));
-                        }
-                        (v, w.join(" "), cmp)
+                        (v, place(occ, false), cmp)
                     }
                 }
             }
@@ -227,6 +218,22 @@ pub fn test_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         check(ctx, occ, Scalar::R(value), cmp, &title)?;
     }
     Ok(None)
+}
+
+/// Where an occurrence tests, for the title of its check: the entity keywords given and POINT
+/// (`declared_only`: those its factor keyword declares).
+fn place(occ: &Args, declared_only: bool) -> String {
+    let mut w = Vec::new();
+    for kw in ["NOEUD", "GROUP_NO", "MAILLE", "GROUP_MA"] {
+        let t = if declared_only { occ.text_if_declared(kw) } else { occ.text(kw) };
+        if let Some(t) = t {
+            w.push(format!("{kw} {t}"));
+        }
+    }
+    if let Some(p) = occ.declares("POINT").then(|| occ.int("POINT")).flatten() {
+        w.push(format!("POINT {p}"));
+    }
+    w.join(" ")
 }
 
 /// One occurrence of CHAM_NO or CHAM_ELEM: a value of a standalone field.
@@ -258,16 +265,7 @@ fn test_field(ctx: &mut Ctx, occ: &Args, kw: &str) -> Result<()> {
             })?;
             let v = locate(field, k, &mesh, occ, &mesh_name)?;
             // CHAM_NO declares neither cells nor points: only the keywords of this factor keyword are read.
-            let mut w = Vec::new();
-            for kw in ["NOEUD", "GROUP_NO", "MAILLE", "GROUP_MA"] {
-                if let Some(t) = occ.text_if_declared(kw) {
-                    w.push(format!("{kw} {t}"));
-                }
-            }
-            if let Some(p) = occ.declares("POINT").then(|| occ.int("POINT")).flatten() {
-                w.push(format!("POINT {p}"));
-            }
-            (v, cmp.to_string(), format!("NOM_CMP {cmp} {}", w.join(" ")))
+            (v, cmp.to_string(), format!("NOM_CMP {cmp} {}", place(occ, true)))
         }
         (None, None) => return Err(occ.err("NOM_CMP", "NOM_CMP or TYPE_TEST is required")),
     };
