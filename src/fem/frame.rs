@@ -38,12 +38,10 @@ impl std::fmt::Display for OnAxis {
     }
 }
 
-fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
+use nalgebra::Vector3;
 
-fn norm(a: &[f64; 3]) -> f64 {
-    a.iter().map(|v| v * v).sum::<f64>().sqrt()
+fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    Vector3::from(*a).cross(&Vector3::from(*b)).into()
 }
 
 impl Frame {
@@ -77,10 +75,10 @@ impl Frame {
     /// A cylindrical frame: in 3D about the axis through `origin` of direction given by the nautical
     /// angles (α, β) in degrees; in 2D (`axis_deg` None) about the point `origin`.
     pub fn cylinder(origin: [f64; 3], axis_deg: Option<[f64; 2]>) -> Frame {
-        let axis = axis_deg.map(|[a, b]| {
-            let (sa, ca) = a.to_radians().sin_cos();
-            let (sb, cb) = b.to_radians().sin_cos();
-            [ca * cb, sa * cb, -sb]
+        // The axis is the L of the nautical frame of those angles.
+        let axis = axis_deg.map(|[a, b]| match Frame::nautical(&[a, b]) {
+            Frame::Fixed(ax) => ax[0],
+            Frame::Cylinder { .. } => unreachable!("a nautical frame is fixed"),
         });
         Frame::Cylinder { origin, axis }
     }
@@ -90,37 +88,28 @@ impl Frame {
         match *self {
             Frame::Fixed(a) => Ok(a),
             Frame::Cylinder { origin, axis } => {
-                let d = [x[0] - origin[0], x[1] - origin[1], x[2] - origin[2]];
+                let d = Vector3::from(*x) - Vector3::from(origin);
                 match axis {
                     Some(e) => {
-                        let s: f64 = (0..3).map(|i| d[i] * e[i]).sum();
-                        let r = [d[0] - s * e[0], d[1] - s * e[1], d[2] - s * e[2]];
-                        let (nr, ne) = (norm(&r), norm(&e));
-                        if nr <= 1e-14 * norm(&d).max(1e-300) || nr == 0.0 {
+                        let l = Vector3::from(e).normalize();
+                        // The radial direction: d less its part along the axis.
+                        let r = d - l * d.dot(&l);
+                        if r.norm() <= 1e-14 * d.norm().max(1e-300) {
                             return Err(OnAxis { point: *x });
                         }
-                        let n = [r[0] / nr, r[1] / nr, r[2] / nr];
-                        let l = [e[0] / ne, e[1] / ne, e[2] / ne];
-                        Ok([l, cross(&n, &l), n])
+                        let n = r.normalize();
+                        Ok([l.into(), n.cross(&l).into(), n.into()])
                     }
                     None => {
-                        let nr = d[0].hypot(d[1]);
+                        let nr = d.x.hypot(d.y);
                         if nr == 0.0 {
                             return Err(OnAxis { point: *x });
                         }
-                        let (c, s) = (d[0] / nr, d[1] / nr);
+                        let (c, s) = (d.x / nr, d.y / nr);
                         Ok([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
                     }
                 }
             }
-        }
-    }
-
-    /// Is it the global frame?
-    pub fn is_global(&self) -> bool {
-        match self {
-            Frame::Fixed(a) => (0..3).all(|i| (0..3).all(|j| (a[i][j] - if i == j { 1.0 } else { 0.0 }).abs() < 1e-15)),
-            Frame::Cylinder { .. } => false,
         }
     }
 }
@@ -168,7 +157,7 @@ mod tests {
         assert!(close(&b, &[[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]], 1e-15));
         let Frame::Fixed(c) = Frame::nautical(&[30.0, 20.0, 10.0]) else { unreachable!() };
         assert!(orthonormal(&c));
-        assert!(Frame::nautical(&[0.0, 0.0, 0.0]).is_global());
+        assert_eq!(Frame::nautical(&[0.0, 0.0, 0.0]), Frame::GLOBAL);
     }
 
     #[test]

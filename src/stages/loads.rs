@@ -295,8 +295,6 @@ fn face_impo(mesh: &Mesh, occ: &Args, name: &str, dim: usize, functional: bool) 
             }
             values.push((*k, value));
         }
-        let node_cells = geometry::node_to_cells(mesh);
-        let mut signs = Vec::with_capacity(cells.len());
         for &c in &cells {
             let t = mesh.cell_types[c];
             if !geometry::is_skin_type(t) || t.dim() + 1 != dim {
@@ -311,17 +309,19 @@ fn face_impo(mesh: &Mesh, occ: &Args, name: &str, dim: usize, functional: bool) 
                     ),
                 ));
             }
-            signs.push(geometry::outward_sign(mesh, &node_cells, c).unwrap_or(1.0));
         }
-        let normals = geometry::averaged_node_normals(mesh, &cells, &signs).map_err(|e| occ.err("GROUP_MA", e))?;
-        // The tangent runs along each segment's own orientation (Code_Aster's canort): from the normals
-        // of the segments as they are, unturned.
-        let raw = if occ.given("DTAN") {
-            geometry::averaged_node_normals(mesh, &cells, &vec![1.0; cells.len()])
-                .map_err(|e| occ.err("GROUP_MA", e))?
+        // DNOR's normals are turned out of the cells they bound; DTAN's tangent runs along each segment's
+        // own orientation (Code_Aster's canort): from the normals of the segments as they are, unturned.
+        let signs: Vec<f64> = if occ.given("DNOR") {
+            let node_cells = geometry::node_to_cells(mesh);
+            cells.iter().map(|&c| geometry::outward_sign(mesh, &node_cells, c).unwrap_or(1.0)).collect()
         } else {
-            Default::default()
+            Vec::new()
         };
+        let node_normals =
+            |signs: &[f64]| geometry::averaged_node_normals(mesh, &cells, signs).map_err(|e| occ.err("GROUP_MA", e));
+        let normals = if occ.given("DNOR") { node_normals(&signs)? } else { Default::default() };
+        let raw = if occ.given("DTAN") { node_normals(&vec![1.0; cells.len()])? } else { Default::default() };
         for node in nodes {
             for (k, value) in &values {
                 let d = if *k == "DNOR" {

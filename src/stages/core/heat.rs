@@ -87,6 +87,23 @@ fn param(m: &Material, beh: &str, p: &str) -> Option<Param> {
     }
 }
 
+/// λ_L, λ_T, λ_N of an orthotropic law by `get` (`missing` the error of an absent one); in the plane λ_N is
+/// not used and may be absent (`zero` then).
+fn three<P>(
+    dim: usize,
+    zero: P,
+    get: impl Fn(&str) -> Result<Option<P>>,
+    missing: impl Fn(&str) -> Error,
+) -> Result<[P; 3]> {
+    let [l, t, n] = ["LAMBDA_L", "LAMBDA_T", "LAMBDA_N"].map(|p| get(p).map(|v| (p, v)));
+    let value = |(p, v): (&str, Option<P>)| v.ok_or_else(|| missing(p));
+    let n = match n? {
+        (_, None) if dim == 2 => zero,
+        n => value(n)?,
+    };
+    Ok([value(l?)?, value(t?)?, n])
+}
+
 /// The heat law of a material; `cell` names it in messages, `frame` is its local frame (AFFE_CARA_ELEM
 /// MASSIF: None without CARA_ELEM), `dim` the dimension of its element.
 pub fn heat_law(m: &Material, cell: &str, frame: Option<Frame>, dim: usize) -> Result<Law> {
@@ -101,34 +118,17 @@ pub fn heat_law(m: &Material, cell: &str, frame: Option<Frame>, dim: usize) -> R
                 "cell {cell}: {b} needs the local axes of its material: give CARA_ELEM (AFFE_CARA_ELEM MASSIF)"
             ))
         })?;
-        // In the plane λ_N is not used (and may be absent).
-        let names = ["LAMBDA_L", "LAMBDA_T", "LAMBDA_N"];
         let missing = |p: &str| Error::runtime(format!("cell {cell}: {b} without {p}"));
         if b == "THER_ORTH" {
-            let mut l = Vec::new();
-            for (i, p) in names.iter().enumerate() {
-                l.push(match param(m, b, p) {
-                    Some(v) => v,
-                    None if i == 2 && dim == 2 => Param::Real(0.0),
-                    None => return Err(missing(p)),
-                });
-            }
-            let l: [Param; 3] = l.try_into().unwrap_or_else(|_| unreachable!("three conductivities"));
+            let l = three(dim, Param::Real(0.0), |p| Ok(param(m, b, p)), missing)?;
             return Ok(Law::Linear { lambda: Lambda::Ortho(l, frame), rho_cp: param(m, b, "RHO_CP") });
         }
         let func = |p: &str| match m.behaviours[b].get(p) {
             Some(MatValue::Func(c)) => Some(c.clone()),
             _ => None,
         };
-        let mut l = Vec::new();
-        for (i, p) in names.iter().enumerate() {
-            l.push(match func(p) {
-                Some(c) => curve_of(&c, &format!("{b}/{p}"))?,
-                None if i == 2 && dim == 2 => Curve::constant(0.0),
-                None => return Err(missing(p)),
-            });
-        }
-        let l: [Curve; 3] = l.try_into().unwrap_or_else(|_| unreachable!("three conductivities"));
+        let get = |p: &str| func(p).map(|c| curve_of(&c, &format!("{b}/{p}"))).transpose();
+        let l = three(dim, Curve::constant(0.0), get, missing)?;
         let beta = match (func("BETA"), func("RHO_CP")) {
             (Some(c), _) => curve_of(&c, &format!("{b}/BETA"))?,
             (None, Some(r)) => Curve::enthalpy(&curve_of(&r, &format!("{b}/RHO_CP"))?),
