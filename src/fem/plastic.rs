@@ -5,11 +5,11 @@
 
 use super::assembly::{Assembler, ElementDofs};
 use super::dofs::Constraints;
-use super::elastic::{coords_of, Elastic};
+use super::elastic::{coords_of, Elastic, NodalTemperature};
 use super::elasticity::{self, GaussGeom, Modelisation};
 use super::field::Field;
 use super::physics::{Failure, Load, Physics, Prediction, StepInfo};
-use super::plasticity::{Kind, PointState, Request, VonMises};
+use super::plasticity::{Kind, PointState, Request, ThermalStep, VonMises};
 use crate::diag::Error;
 
 /// The components of VARI_ELGA of the von Mises laws.
@@ -28,10 +28,23 @@ pub struct Plastic {
     /// The elastic matrix instead of the tangent for the prediction and for the corrections.
     pub elastic_prediction: bool,
     pub elastic_correction: bool,
+    /// The temperature the laws follow, where AFFE_VARC gives one.
+    temperature: Option<Temperature>,
 }
 
 /// The laws' state: per bulk cell, per point.
 pub type State = Vec<Vec<PointState>>;
+
+/// A law whose parameters depend on the temperature: the law and the thermal expansion coefficient at a
+/// temperature.
+pub type LawOfTemperature = std::rc::Rc<dyn Fn(f64) -> Result<(VonMises, f64), String>>;
+
+/// The temperature of AFFE_VARC (NOM_VARC='TEMP') where it acts on the laws: its sources (one per
+/// occurrence) and, per mesh cell, T_ref, the index of its source and the cell's law of the temperature.
+pub struct Temperature {
+    pub sources: Vec<NodalTemperature>,
+    pub cells: Vec<Option<(f64, usize, LawOfTemperature)>>,
+}
 
 impl Plastic {
     /// The physics of `elastic`'s model with `laws[c]` on each mesh cell `c` of its bulk (`relations`
@@ -67,7 +80,56 @@ impl Plastic {
             relations,
             elastic_prediction: false,
             elastic_correction: false,
+            temperature: None,
         })
+    }
+
+    /// The same physics, its laws following `temperature` on the cells it covers: each point's law and
+    /// thermal strain at the temperature interpolated there from the nodes, at the step's start and end.
+    pub fn with_temperature(mut self, temperature: Temperature) -> Plastic {
+        self.temperature = Some(temperature);
+        self
+    }
+
+    /// The temperature of every source at the nodes at `t` (computed on demand, once).
+    fn nodal_temperatures(&self, t: f64) -> Result<Vec<Vec<f64>>, Error> {
+        match &self.temperature {
+            Some(th) => th.sources.iter().map(|s| s(t)).collect(),
+            None => Ok(Vec::new()),
+        }
+    }
+
+    /// The law at the end of the step at point `k` of bulk cell `i` and what the step's change of
+    /// temperature does there (None where no temperature acts).
+    fn thermal_law(
+        &self,
+        i: usize,
+        k: usize,
+        temps: (&[Vec<f64>], &[Vec<f64>]),
+    ) -> Result<Option<(VonMises, ThermalStep)>, String> {
+        let Some(th) = &self.temperature else { return Ok(None) };
+        let c = self.elastic.bulk[i];
+        let Some((tref, src, law)) = &th.cells[c] else { return Ok(None) };
+        let g = &self.points[i][k];
+        let mesh = &self.elastic.mesh;
+        let at = |nodal: &[f64]| -> Result<f64, String> {
+            let mut t = 0.0;
+            for (a, &n) in mesh.cells[c].iter().enumerate() {
+                let v = nodal.get(n).copied().unwrap_or(f64::NAN);
+                if !v.is_finite() {
+                    return Err(format!("AFFE_VARC: no temperature at node {}", mesh.node_names[n]));
+                }
+                t += g.n[a] * v;
+            }
+            Ok(t)
+        };
+        let (tm, tp) = (at(&temps.0[*src])?, at(&temps.1[*src])?);
+        let (plus, alpha_p) = law(tp)?;
+        let (minus, alpha_m) = if tm == tp { (plus.clone(), alpha_p) } else { law(tm)? };
+        let own = &self.laws[i];
+        let plus = VonMises { resi_inte: own.resi_inte, iter_inte: own.iter_inte, ..plus };
+        let deps_th = alpha_p * (tp - tref) - alpha_m * (tm - tref);
+        Ok(Some((plus, ThermalStep { minus, deps_th })))
     }
 
     /// The natural state: no strain, no stress, no plastic strain.
@@ -167,6 +229,10 @@ impl Physics for Plastic {
         let request = if step.predict { Request::Prediction } else { Request::Full };
         let elastic_matrix = if step.predict { self.elastic_prediction } else { self.elastic_correction };
         let mut states = Vec::with_capacity(prev.len());
+        let temps = match &self.temperature {
+            Some(_) => Some((self.nodal_temperatures(step.t0)?, self.nodal_temperatures(step.t1)?)),
+            None => None,
+        };
         for (i, prev_c) in prev.iter().enumerate() {
             let dofs = self.dofs.get(i);
             let nd = dofs.len();
@@ -177,15 +243,25 @@ impl Physics for Plastic {
             for (k, old) in prev_c.iter().enumerate() {
                 let g = &self.points[i][k];
                 let eps = self.strain(i, k, &ue, Some(old));
-                let (st, d) =
-                    self.laws[i].integrate_with(self.kind, old, &eps, request, elastic_matrix).map_err(|e| {
-                        let c = self.elastic.bulk[i];
-                        Failure::Step(Error::runtime(format!(
-                            "integration failure at point {} of cell {}: {e}",
-                            k + 1,
-                            self.elastic.mesh.cell_names[c]
-                        )))
-                    })?;
+                let fail = |e: String| {
+                    let c = self.elastic.bulk[i];
+                    Failure::Step(Error::runtime(format!(
+                        "integration failure at point {} of cell {}: {e}",
+                        k + 1,
+                        self.elastic.mesh.cell_names[c]
+                    )))
+                };
+                let thermal = match &temps {
+                    Some((t0, t1)) => self.thermal_law(i, k, (t0, t1)).map_err(fail)?,
+                    None => None,
+                };
+                let (st, d) = match &thermal {
+                    Some((law, step)) => {
+                        law.integrate_thermal(self.kind, old, &eps, request, elastic_matrix, Some(step))
+                    }
+                    None => self.laws[i].integrate_with(self.kind, old, &eps, request, elastic_matrix),
+                }
+                .map_err(fail)?;
                 elasticity::add_bt_sigma(md, g, nd / dim, &st.sig, &mut fe);
                 if let Some(ke) = ke.as_mut() {
                     elasticity::add_btdb(md, g, nd / dim, &d, ke);

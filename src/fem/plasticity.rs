@@ -30,6 +30,15 @@ pub enum Beyond {
     Linear,
 }
 
+/// One traction curve `σ(ε)` of a nappe, at its temperature, with its PROL_DROITE.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TractionCurve {
+    pub temp: f64,
+    pub eps: Vec<f64>,
+    pub sig: Vec<f64>,
+    pub beyond: Beyond,
+}
+
 /// The isotropic hardening `R(p)`.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Hardening {
@@ -74,6 +83,132 @@ impl Hardening {
             ));
         }
         Ok((Hardening::Curve { p, r: sig.to_vec(), beyond }, e))
+    }
+
+    /// TRACTION given as a nappe of the temperature: the curve at `temp`, as Code_Aster's `rctrac` builds
+    /// it. At (within 1e-6 relative) a curve's temperature, that curve; between two curves, the Young
+    /// modulus interpolated linearly between theirs and the hardening on the union of their plastic
+    /// abscissas, `R` interpolated between the two curves' values there (each curve continued past its last
+    /// point as its PROL_DROITE says; one that ends with 'EXCLU' ends the merged curve); below the first
+    /// or above the last temperature, the nappe's PROL_GAUCHE / PROL_DROITE: the end curve (CONSTANT),
+    /// the two end curves extrapolated (LINEAIRE) or an error (EXCLU).
+    pub fn traction_at(
+        curves: &[TractionCurve],
+        below: Beyond,
+        above: Beyond,
+        temp: f64,
+    ) -> Result<(Hardening, f64), String> {
+        let n = curves.len();
+        if n == 0 {
+            return Err("TRACTION: the nappe SIGM holds no curve".into());
+        }
+        enum At {
+            Curve(usize),
+            Between(usize),
+        }
+        let outside = |side: Beyond, end: usize, pair: usize, what: &str, prol: &str| -> Result<At, String> {
+            match side {
+                Beyond::Constant => Ok(At::Curve(end)),
+                Beyond::Linear if n > 1 => Ok(At::Between(pair)),
+                _ => Err(format!(
+                    "TRACTION: the temperature {temp} lies {what} the temperatures of the nappe SIGM ({} to {}) \
+                     and its {prol} is 'EXCLU'",
+                    curves[0].temp,
+                    curves[n - 1].temp
+                )),
+            }
+        };
+        let at = if temp < curves[0].temp {
+            outside(below, 0, 0, "below", "PROL_GAUCHE")?
+        } else if temp > curves[n - 1].temp {
+            outside(above, n - 1, n.saturating_sub(2), "above", "PROL_DROITE")?
+        } else {
+            let near = |t: f64| (t - temp).abs() <= 1e-6 * t.abs();
+            let mut at = At::Curve(0);
+            for j in 0..n - 1 {
+                let (t1, t2) = (curves[j].temp, curves[j + 1].temp);
+                if near(t1) {
+                    at = At::Curve(j);
+                    break;
+                }
+                if near(t2) {
+                    at = At::Curve(j + 1);
+                    break;
+                }
+                if t1 < temp && temp < t2 {
+                    at = At::Between(j);
+                    break;
+                }
+            }
+            at
+        };
+        let i = match at {
+            At::Curve(k) => return Hardening::traction(&curves[k].eps, &curves[k].sig, curves[k].beyond),
+            At::Between(i) => i,
+        };
+        let (c1, c2) = (&curves[i], &curves[i + 1]);
+        let (h1, e1) = Hardening::traction(&c1.eps, &c1.sig, c1.beyond)?;
+        let (h2, e2) = Hardening::traction(&c2.eps, &c2.sig, c2.beyond)?;
+        let coef = (temp - c1.temp) / (c2.temp - c1.temp);
+        let e = e1 + coef * (e2 - e1);
+        let (Hardening::Curve { p: p1, r: r1, .. }, Hardening::Curve { p: p2, r: r2, .. }) = (&h1, &h2) else {
+            unreachable!("a traction curve's hardening is a curve")
+        };
+        // R of a curve at `z` past its last point, as its PROL_DROITE continues it (None: it ends there).
+        let past = |p: &[f64], r: &[f64], beyond: Beyond, z: f64| -> Option<f64> {
+            let m = p.len();
+            match beyond {
+                Beyond::Error => None,
+                Beyond::Constant => Some(r[m - 1]),
+                Beyond::Linear => Some(r[m - 1] + (r[m - 1] - r[m - 2]) / (p[m - 1] - p[m - 2]) * (z - p[m - 1])),
+            }
+        };
+        // R of a curve at `z` within it (the segment holding it).
+        let within = |p: &[f64], r: &[f64], z: f64| -> f64 {
+            let (s, _) = Hardening::segment(p, z);
+            r[s] + (r[s + 1] - r[s]) / (p[s + 1] - p[s]) * (z - p[s])
+        };
+        let mut p = vec![0.0];
+        let mut r = vec![r1[0] + coef * (r2[0] - r1[0])];
+        let (mut k1, mut k2) = (1, 1);
+        while k1 < p1.len() || k2 < p2.len() {
+            let (z, v1, v2);
+            if k1 >= p1.len() {
+                z = p2[k2];
+                let Some(x) = past(p1, r1, c1.beyond, z) else { break };
+                (v1, v2) = (x, r2[k2]);
+                k2 += 1;
+            } else if k2 >= p2.len() {
+                z = p1[k1];
+                let Some(x) = past(p2, r2, c2.beyond, z) else { break };
+                (v1, v2) = (r1[k1], x);
+                k1 += 1;
+            } else if (p2[k2] - p1[k1]).abs() <= 1e-6 * p1[k1] {
+                z = p1[k1];
+                (v1, v2) = (r1[k1], r2[k2]);
+                k1 += 1;
+                k2 += 1;
+            } else if p2[k2] > p1[k1] {
+                z = p1[k1];
+                (v1, v2) = (r1[k1], within(p2, r2, z));
+                k1 += 1;
+            } else {
+                z = p2[k2];
+                (v1, v2) = (within(p1, r1, z), r2[k2]);
+                k2 += 1;
+            }
+            p.push(z);
+            r.push(v1 + coef * (v2 - v1));
+        }
+        if p.len() < 2 {
+            return Err(format!("TRACTION: the curve SIGM at the temperature {temp} has a single point"));
+        }
+        let beyond = match (c1.beyond, c2.beyond) {
+            (Beyond::Error, _) | (_, Beyond::Error) => Beyond::Error,
+            (Beyond::Linear, _) | (_, Beyond::Linear) => Beyond::Linear,
+            _ => Beyond::Constant,
+        };
+        Ok((Hardening::Curve { p, r, beyond }, e))
     }
 
     /// The yield stress `R(0)`.
@@ -206,6 +341,14 @@ impl VonMises {
     }
 }
 
+/// What a step's change of temperature does to a point: the law at the step's start (its moduli rescale
+/// the start stress) and the increment of the thermal strain `α⁺ (T⁺ − T_ref) − α⁻ (T⁻ − T_ref)`.
+#[derive(Debug, Clone)]
+pub struct ThermalStep {
+    pub minus: VonMises,
+    pub deps_th: f64,
+}
+
 /// Tensorial (`EPXY`) to Mandel (`√2 EPXY`) components, and back.
 fn to_mandel(v: &[f64; 6]) -> [f64; 6] {
     [v[0], v[1], v[2], v[3] * SQRT_2, v[4] * SQRT_2, v[5] * SQRT_2]
@@ -254,21 +397,53 @@ impl VonMises {
         option: Request,
         elastic_matrix: bool,
     ) -> Result<(PointState, [[f64; 6]; 6]), String> {
+        self.integrate_thermal(kind, old, eps, option, elastic_matrix, None)
+    }
+
+    /// [`VonMises::integrate_with`] over a step where the temperature changes (`self` is the law at the
+    /// step's end, `thermal` says what it was at its start and the thermal strain's increment), as
+    /// `nmisot` does: the start stress rescaled by the ratios of the shear and bulk moduli (end over
+    /// start), the isotropic thermal increment taken off the strain's. Under [`Request::Prediction`] the
+    /// returned stress is the start one's elastic response to the thermal increment alone (the forces
+    /// the prediction balances); the tangent is the start state's.
+    pub fn integrate_thermal(
+        &self,
+        kind: Kind,
+        old: &PointState,
+        eps: &[f64; 6],
+        option: Request,
+        elastic_matrix: bool,
+        thermal: Option<&ThermalStep>,
+    ) -> Result<(PointState, [[f64; 6]; 6]), String> {
         let n = kind.ncomp();
         let (e, nu) = (self.e, self.nu);
         let two_mu = e / (1.0 + nu);
         let three_k = e / (1.0 - 2.0 * nu);
         let three_mu = 1.5 * two_mu;
+        let coef = thermal.map_or(0.0, |t| t.deps_th);
         let mut deps = [0.0; 6];
         for k in 0..n {
             deps[k] = eps[k] - old.eps[k];
         }
+        if option == Request::Prediction && thermal.is_some() {
+            // The prediction's forces: the thermal increment alone.
+            deps = [0.0; 6];
+        }
         if kind == Kind::PlaneStress {
-            deps[2] = -nu / (1.0 - nu) * (deps[0] + deps[1]);
+            deps[2] = -nu / (1.0 - nu) * (deps[0] + deps[1]) + (1.0 + nu) / (1.0 - nu) * coef;
+        }
+        for d in deps.iter_mut().take(3) {
+            *d -= coef;
         }
         let deps = to_mandel(&deps);
         let (mut depsdv, mut depsmo) = deviator(&deps);
-        let (sigmdv, sigmmo) = deviator(&to_mandel(&old.sig));
+        let (mut sigmdv, mut sigmmo) = deviator(&to_mandel(&old.sig));
+        if let Some(t) = thermal {
+            // The start stress seen by the end's moduli.
+            let (two_mu_m, three_k_m) = (t.minus.e / (1.0 + t.minus.nu), t.minus.e / (1.0 - 2.0 * t.minus.nu));
+            sigmdv.iter_mut().for_each(|x| *x *= two_mu / two_mu_m);
+            sigmmo *= three_k / three_k_m;
+        }
         let mut sigel = [0.0; 6];
         for k in 0..n {
             sigel[k] = sigmdv[k] + two_mu * depsdv[k];
@@ -288,6 +463,13 @@ impl VonMises {
                 dp = 0.0;
                 plastic = old.plastic && self.hardening.is_some();
                 sigeps = 1.0;
+                if thermal.is_some() {
+                    let mut sig = [0.0; 6];
+                    for k in 0..n {
+                        sig[k] = sigmdv[k] + two_mu * depsdv[k] + if k < 3 { sigmmo + three_k * depsmo } else { 0.0 };
+                    }
+                    state.sig = from_mandel(&sig);
+                }
             }
             Request::Full => {
                 let mut seq = equivalent(&sigel, n);
@@ -320,15 +502,17 @@ impl VonMises {
                 }
                 let mut sig = [0.0; 6];
                 sigdv = [0.0; 6];
+                // The radial factor (1 without a plastic increment: also for a law without yield, R = ∞).
+                let radial = if dp == 0.0 { 1.0 } else { rp / (rp + three_mu * dp) };
                 for k in 0..n {
-                    sigdv[k] = (sigmdv[k] + two_mu * depsdv[k]) * rp / (rp + three_mu * dp);
+                    sigdv[k] = (sigmdv[k] + two_mu * depsdv[k]) * radial;
                     sig[k] = sigdv[k] + if k < 3 { sigmmo + three_k * depsmo } else { 0.0 };
                 }
                 let mut total = [0.0; 6];
                 total[..n].copy_from_slice(&eps[..n]);
                 if kind == Kind::PlaneStress {
                     // εzz of the law: the elastic estimate with the plastic correction.
-                    total[2] = old.eps[2] + depsmo + depsdv[2];
+                    total[2] = old.eps[2] + depsmo + depsdv[2] + coef;
                 }
                 state = PointState { eps: total, sig: from_mandel(&sig), p: old.p + dp, plastic };
                 sigeps = (0..n).map(|k| sigdv[k] * depsdv[k]).sum::<f64>();
@@ -637,6 +821,86 @@ mod tests {
         let (ex, _) = Hardening::traction(&[1e-3, 2e-3], &[200.0, 250.0], Beyond::Error).unwrap();
         assert!(ex.at(1.0).unwrap_err().contains("EXCLU"));
         assert!(Hardening::linear(100.0, 100.0, 1.0).is_err());
+    }
+
+    /// A nappe of two curves (hsnv100's): at a curve's temperature that curve; between, E interpolated and
+    /// R on the union of the plastic abscissas, each curve's R there interpolated in temperature.
+    #[test]
+    fn traction_nappe_interpolated_in_temperature() {
+        let c = |temp: f64, eps: &[f64], sig: &[f64]| TractionCurve {
+            temp,
+            eps: eps.to_vec(),
+            sig: sig.to_vec(),
+            beyond: Beyond::Linear,
+        };
+        let curves = [c(0.0, &[2e-3, 4e-3], &[400.0, 500.0]), c(50.0, &[1e-3, 3e-3], &[200.0, 300.0])];
+        let (h0, e0) = Hardening::traction_at(&curves, Beyond::Linear, Beyond::Linear, 0.0).unwrap();
+        assert_eq!((h0.clone(), e0), Hardening::traction(&[2e-3, 4e-3], &[400.0, 500.0], Beyond::Linear).unwrap());
+        // Both curves have E = 2e5; their plastic abscissas: 0, 1.5e-3 (first) and 0, 1.5e-3 (second).
+        let (h, e) = Hardening::traction_at(&curves, Beyond::Linear, Beyond::Linear, 25.0).unwrap();
+        assert_eq!(e, 200_000.0);
+        let Hardening::Curve { p, r, beyond } = &h else { panic!("a curve") };
+        assert_eq!((p.len(), *beyond), (2, Beyond::Linear));
+        assert!((p[1] - 1.5e-3).abs() < 1e-15 && (r[0] - 300.0).abs() < 1e-12 && (r[1] - 400.0).abs() < 1e-12);
+        // Past the last temperature, LINEAIRE extrapolates the two end curves: R(0) = 400 − 2·(400 − 200).
+        let (hx, _) = Hardening::traction_at(&curves, Beyond::Linear, Beyond::Linear, 100.0).unwrap();
+        assert!((hx.yield_stress() - 0.0).abs() < 1e-9);
+        assert!(Hardening::traction_at(&curves, Beyond::Linear, Beyond::Error, 60.0).unwrap_err().contains("EXCLU"));
+        // Abscissas that differ: the union, each curve's R interpolated on the other's points.
+        let curves = [c(0.0, &[1e-3, 3e-3], &[200.0, 300.0]), c(10.0, &[1e-3, 2e-3, 5e-3], &[200.0, 250.0, 310.0])];
+        let (h, _) = Hardening::traction_at(&curves, Beyond::Constant, Beyond::Constant, 5.0).unwrap();
+        let Hardening::Curve { p, r, .. } = &h else { panic!("a curve") };
+        // p: 0; 2e-3 − 250/2e5 = 7.5e-4; 3e-3 − 1.5e-3 = 1.5e-3; 5e-3 − 1.55e-3 = 3.45e-3.
+        let want_p = [0.0, 7.5e-4, 1.5e-3, 3.45e-3];
+        assert!(p.iter().zip(want_p).all(|(a, b)| (a - b).abs() < 1e-15), "{p:?}");
+        // At 7.5e-4 the first curve gives 200 + 100·0.5 = 250: R = 250; at 1.5e-3 the second gives
+        // 250 + 60·(0.75e-3/2.7e-3): R = (300 + that) / 2; at 3.45e-3 the first, LINEAIRE, continues its slope.
+        assert!((r[1] - 250.0).abs() < 1e-9);
+        assert!((r[2] - 0.5 * (300.0 + 250.0 + 60.0 * 0.75 / 2.7)).abs() < 1e-9);
+        assert!((r[3] - 0.5 * (300.0 + 100.0 / 1.5e-3 * 1.95e-3 + 310.0)).abs() < 1e-9);
+    }
+
+    /// A point held at zero strain and heated by ΔT: σ = −3K α ΔT / 3 · I (3D); the start stress seen by
+    /// the end's moduli (a stress from a softer start law doubled when E doubles), unchanged strain.
+    #[test]
+    fn thermal_step_strains_and_rescales() {
+        let (e, nu, alpha, dt) = (200_000.0, 0.3, 1e-5, 50.0);
+        let l = VonMises::new(e, nu, None);
+        let step = ThermalStep { minus: l.clone(), deps_th: alpha * dt };
+        let (st, _) = l
+            .integrate_thermal(Kind::Solid, &PointState::default(), &[0.0; 6], Request::Full, false, Some(&step))
+            .unwrap();
+        let want = -e / (1.0 - 2.0 * nu) * alpha * dt;
+        assert!(
+            st.sig[..3].iter().all(|s| (s - want).abs() < 1e-9) && st.sig[3..].iter().all(|s| *s == 0.0),
+            "{:?}",
+            st.sig
+        );
+        // The prediction's stress is the same elastic response, the state's strain unchanged.
+        let (pr, _) = l
+            .integrate_thermal(Kind::Solid, &PointState::default(), &[1.0; 6], Request::Prediction, false, Some(&step))
+            .unwrap();
+        assert!((pr.sig[0] - want).abs() < 1e-9 && pr.eps == [0.0; 6]);
+        // Plane stress, free in zz: the in-plane stresses −E α ΔT / (1 − ν), εzz = (1 + ν)/(1 − ν) α ΔT.
+        let (ps, _) = l
+            .integrate_thermal(Kind::PlaneStress, &PointState::default(), &[0.0; 6], Request::Full, false, Some(&step))
+            .unwrap();
+        assert!((ps.sig[0] + e * alpha * dt / (1.0 - nu)).abs() < 1e-9 && ps.sig[2].abs() < 1e-9);
+        assert!((ps.eps[2] - (1.0 + nu) / (1.0 - nu) * alpha * dt).abs() < 1e-15);
+        // Rescaling: a stress reached under E/2 is doubled under E at no strain change.
+        let soft = VonMises::new(e / 2.0, nu, None);
+        let old = PointState { sig: [10.0, -4.0, 3.0, 2.0, 0.0, 1.0], ..PointState::default() };
+        let (st, _) = l
+            .integrate_thermal(
+                Kind::Solid,
+                &old,
+                &[0.0; 6],
+                Request::Full,
+                false,
+                Some(&ThermalStep { minus: soft, deps_th: 0.0 }),
+            )
+            .unwrap();
+        assert!(st.sig.iter().zip(old.sig).all(|(a, b)| (a - 2.0 * b).abs() < 1e-12), "{:?}", st.sig);
     }
 
     /// Unloading after yield is elastic: V2 back to 0, p kept; the prediction tangent of a point that

@@ -8,13 +8,19 @@ use crate::fem::dofs::DofNumbering;
 use crate::fem::elastic::{Elastic, NodalTemperature, ThermalStrain};
 use crate::fem::elasticity::{IsoElastic, Modelisation};
 use crate::fem::plastic::Plastic;
-use crate::fem::plasticity::{Beyond, Hardening, VonMises};
+use crate::fem::plastic::{LawOfTemperature, Temperature};
+use crate::fem::plasticity::{Beyond, Hardening, TractionCurve, VonMises};
 use crate::mesh::Mesh;
 use std::rc::Rc;
-/// a formula of no parameter). None when the parameter is not given.
 /// A material parameter as a real: a real, or a function that does not
 /// depend on a variable unknown here (DEFI_CONSTANTE, NOM_PARA 'TOUTPARA';
+/// a formula of no parameter). None when the parameter is not given.
 pub fn mat_param(m: &Material, behaviour: &str, param: &str, cell: &str) -> Result<Option<f64>> {
+    mat_param_at(m, behaviour, param, cell, None)
+}
+
+/// [`mat_param`] at a temperature, when one is known: a function (or formula) of TEMP is evaluated there.
+pub fn mat_param_at(m: &Material, behaviour: &str, param: &str, cell: &str, temp: Option<f64>) -> Result<Option<f64>> {
     let Some(v) = m.behaviours.get(behaviour).and_then(|b| b.get(param)) else {
         return Ok(None);
     };
@@ -35,6 +41,8 @@ pub fn mat_param(m: &Material, behaviour: &str, param: &str, cell: &str) -> Resu
             let what = format!("the function {label}");
             let value = match &*c.data() {
                 ConceptData::Function(f) if f.nom_para == "TOUTPARA" => f.eval(0.0),
+                ConceptData::Function(f) if f.nom_para == "TEMP" && temp.is_some() => f.eval(temp.unwrap_or(0.0)),
+                ConceptData::Formula(f) if f.nom_para == ["TEMP"] && temp.is_some() => f.eval(&[temp.unwrap_or(0.0)]),
                 ConceptData::Function(f) => return Err(depends(&f.nom_para, &what)),
                 ConceptData::Nappe(n) => return Err(depends(&n.nom_para, &what)),
                 ConceptData::Formula(f) if f.nom_para.is_empty() => f.eval(&[]),
@@ -63,6 +71,11 @@ const ELASTIC_BEHAVIOURS: &[(&str, &[&str])] = &[
 
 /// The elastic law of a material and its density RHO (0 when not given).
 pub fn elastic_of(m: &Material, cell: &str) -> Result<(IsoElastic, f64)> {
+    elastic_of_at(m, cell, None)
+}
+
+/// [`elastic_of`] at a temperature, when one is known (parameters functions of TEMP evaluated there).
+pub fn elastic_of_at(m: &Material, cell: &str, temp: Option<f64>) -> Result<(IsoElastic, f64)> {
     let Some((beh, params)) = ELASTIC_BEHAVIOURS.iter().find(|(b, _)| m.behaviours.contains_key(*b)) else {
         let others: Vec<&str> = m.behaviours.keys().map(String::as_str).collect();
         return Err(Error::unsupported(format!(
@@ -73,7 +86,7 @@ pub fn elastic_of(m: &Material, cell: &str) -> Result<(IsoElastic, f64)> {
     };
     let mut v = Vec::with_capacity(params.len());
     for p in params.iter() {
-        let x = mat_param(m, beh, p, cell)?.ok_or_else(|| {
+        let x = mat_param_at(m, beh, p, cell, temp)?.ok_or_else(|| {
             Error::unsupported(format!(
                 "cell {cell}: {beh} without {p} is not supported yet ({} are needed)",
                 params.join(", ")
@@ -87,7 +100,7 @@ pub fn elastic_of(m: &Material, cell: &str) -> Result<(IsoElastic, f64)> {
             .map_err(|e| Error::runtime(format!("cell {cell}: {beh}: {e}")))?,
         _ => unreachable!("ELASTIC_BEHAVIOURS lists 2 or 5 parameters"),
     };
-    let rho = mat_param(m, beh, "RHO", cell)?.unwrap_or(0.0);
+    let rho = mat_param_at(m, beh, "RHO", cell, temp)?.unwrap_or(0.0);
     Ok((law, rho))
 }
 
@@ -99,7 +112,13 @@ pub const PLASTIC_RELATIONS: &[&str] = &["VMIS_ISOT_LINE", "VMIS_ISOT_TRAC"];
 /// VMIS_ISOT_TRAC, whose first point gives the yield stress and the Young modulus the law uses, as
 /// Code_Aster's `rctrac` does.
 pub fn von_mises_of(m: &Material, relation: &str, cell: &str) -> Result<VonMises> {
-    let (elastic, _) = elastic_of(m, cell)?;
+    von_mises_at(m, relation, cell, None)
+}
+
+/// [`von_mises_of`] at a temperature, when one is known: the parameters functions of TEMP evaluated there,
+/// a TRACTION nappe of TEMP interpolated there as Code_Aster's `rctrac` does.
+pub fn von_mises_at(m: &Material, relation: &str, cell: &str, temp: Option<f64>) -> Result<VonMises> {
+    let (elastic, _) = elastic_of_at(m, cell, temp)?;
     if !elastic.is_isotropic() {
         return Err(Error::unsupported(format!(
             "cell {cell}: RELATION='{relation}' on an anisotropic elastic material is not supported yet"
@@ -107,7 +126,7 @@ pub fn von_mises_of(m: &Material, relation: &str, cell: &str) -> Result<VonMises
     }
     let (e, nu) = (elastic.e, elastic.nu);
     let need = |beh: &str, p: &str| -> Result<f64> {
-        mat_param(m, beh, p, cell)?
+        mat_param_at(m, beh, p, cell, temp)?
             .ok_or_else(|| Error::runtime(format!("cell {cell}: RELATION='{relation}' needs {beh}/{p}")))
     };
     let lib = |msg: String| Error::runtime(format!("cell {cell}: {msg}"));
@@ -129,22 +148,46 @@ pub fn von_mises_of(m: &Material, relation: &str, cell: &str) -> Result<VonMises
                     "cell {cell}: RELATION='VMIS_ISOT_TRAC' needs TRACTION (SIGM) in the material"
                 )));
             };
-            let data = c.data();
-            let ConceptData::Function(f) = &*data else {
-                return Err(Error::unsupported(format!(
-                    "cell {cell}: TRACTION/SIGM {} ({}) is not a function of EPSI: traction curves depending \
-                     on another variable are not supported yet",
-                    c.label(),
-                    c.kind()
-                )));
-            };
             use crate::concepts::function::Prol;
-            let beyond = match f.prol_droite {
+            let beyond = |p: Prol| match p {
                 Prol::Exclu => Beyond::Error,
                 Prol::Constant => Beyond::Constant,
                 Prol::Lineaire => Beyond::Linear,
             };
-            let (h, e_curve) = Hardening::traction(&f.x, &f.y, beyond).map_err(lib)?;
+            let data = c.data();
+            let (h, e_curve) = match (&*data, temp) {
+                (ConceptData::Function(f), _) => Hardening::traction(&f.x, &f.y, beyond(f.prol_droite)),
+                (ConceptData::Nappe(n), Some(t)) if n.nom_para == "TEMP" => {
+                    let curves: Vec<TractionCurve> = n
+                        .params
+                        .iter()
+                        .zip(&n.functions)
+                        .map(|(&temp, f)| TractionCurve {
+                            temp,
+                            eps: f.x.clone(),
+                            sig: f.y.clone(),
+                            beyond: beyond(f.prol_droite),
+                        })
+                        .collect();
+                    Hardening::traction_at(&curves, beyond(n.prol_gauche), beyond(n.prol_droite), t)
+                }
+                (ConceptData::Nappe(n), None) if n.nom_para == "TEMP" => {
+                    return Err(Error::unsupported(format!(
+                        "cell {cell}: TRACTION/SIGM {} is a nappe of TEMP: it needs the temperature of AFFE_VARC \
+                         (NOM_VARC='TEMP') on the cell",
+                        c.label()
+                    )))
+                }
+                _ => {
+                    return Err(Error::unsupported(format!(
+                        "cell {cell}: TRACTION/SIGM {} ({}) is neither a function of EPSI nor a nappe of TEMP: \
+                         traction curves depending on another variable are not supported yet",
+                        c.label(),
+                        c.kind()
+                    )))
+                }
+            }
+            .map_err(lib)?;
             Ok(VonMises::new(e_curve, nu, Some(h)))
         }
         other => Err(Error::unsupported(format!("RELATION='{other}' is not supported yet"))),
@@ -161,6 +204,18 @@ pub struct Problem {
 }
 
 pub fn problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<Problem> {
+    problem_with(model, chmat, false)
+}
+
+/// [`problem`] with the parameters that depend on TEMP taken at AFFE_VARC's VALE_REF (for a result whose
+/// laws followed the temperature and which holds its stresses).
+pub fn problem_at_ref(model: &ConceptRef, chmat: &ConceptRef) -> Result<Problem> {
+    problem_with(model, chmat, true)
+}
+
+/// [`problem`]; with `at_ref`, the cells under AFFE_VARC's temperature take their material parameters
+/// that depend on TEMP at its VALE_REF (a law that follows the temperature replaces them later).
+fn problem_with(model: &ConceptRef, chmat: &ConceptRef, at_ref: bool) -> Result<Problem> {
     let m = model.model()?;
     let mesh = m.current_mesh();
     let mut modelisation = None;
@@ -187,7 +242,10 @@ pub fn problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<Problem> {
         return Err(Error::runtime(format!("{} holds no material field", chmat.label())));
     };
     let mut materials = vec![None; mesh.cells.len()];
-    let mut cache: Vec<(*const crate::concepts::Concept, (IsoElastic, f64))> = Vec::new();
+    let refs = if at_ref { temperature_refs(chmat, mesh.cells.len()) } else { vec![None; mesh.cells.len()] };
+    // One evaluation per material concept and reference temperature.
+    type Key = (*const crate::concepts::Concept, Option<u64>);
+    let mut cache: Vec<(Key, (IsoElastic, f64))> = Vec::new();
     for &c in &bulk {
         let Some(mc) = &cells[c] else {
             return Err(Error::runtime(format!(
@@ -198,11 +256,11 @@ pub fn problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<Problem> {
         let md = mc.data();
         let ConceptData::Material(mat) = &*md else { unreachable!("AFFE_MATERIAU holds materials") };
         // One evaluation per material concept.
-        let key = Rc::as_ptr(mc);
+        let key = (Rc::as_ptr(mc), refs[c].map(f64::to_bits));
         let entry = match cache.iter().find(|(k, _)| *k == key) {
             Some((_, v)) => *v,
             None => {
-                let v = elastic_of(mat, &mesh.cell_names[c])?;
+                let v = elastic_of_at(mat, &mesh.cell_names[c], refs[c])?;
                 if let Err(e) = v.0.check(modelisation) {
                     return Err(Error::unsupported(format!("cell {}: {e}", mesh.cell_names[c])));
                 }
@@ -222,27 +280,38 @@ pub use crate::fem::elastic::coords_of;
 /// once, one solve per step for MECA_STATIQUE, SIEF_ELGA unless OPTION='SANS'.
 pub fn elastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Elastic> {
     let p = problem(&cfg.model, chmat).map_err(|e| e.at(cfg.span))?;
-    let skin: Vec<bool> = {
-        let m = cfg.model.model()?;
-        m.elements.iter().map(|e| e.as_ref().is_some_and(|e| e.role == Role::Skin)).collect()
-    };
     let thermal = thermal_strain(chmat, &p).map_err(|e| cfg.locate(e, "CHAM_MATER"))?;
-    let e = Elastic::new(p.mesh, p.modelisation, p.bulk, skin, p.materials, p.numbering, cfg.statics(), cfg.sief)
-        .map_err(|e| e.at(cfg.span))?;
+    let e = elastic_of_problem(cfg, p)?;
     Ok(match thermal {
         Some(t) => e.with_thermal(t),
         None => e,
     })
 }
 
+/// The elastic physics of a checked problem, without thermal strain.
+fn elastic_of_problem(cfg: &Settings, p: Problem) -> Result<Elastic> {
+    let skin: Vec<bool> = {
+        let m = cfg.model.model()?;
+        m.elements.iter().map(|e| e.as_ref().is_some_and(|e| e.role == Role::Skin)).collect()
+    };
+    Elastic::new(p.mesh, p.modelisation, p.bulk, skin, p.materials, p.numbering, cfg.statics(), cfg.sief)
+        .map_err(|e| e.at(cfg.span))
+}
+
 /// The plastic physics of STAT_NON_LINE's model and material field: the elastic problem (its unknowns and
 /// loads) with the law of COMPORTEMENT's relation on every bulk cell (the occurrences apply in their
 /// order, a later one over an earlier one on the cells they share; ELAS where none applies).
 pub fn plastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Plastic> {
-    if super::settings::has_varc(chmat) {
-        return Err(cfg.err("CHAM_MATER", "AFFE_VARC with a plastic behaviour is not supported yet"));
+    let varc = super::settings::has_varc(chmat);
+    let e = if varc {
+        // The laws take the temperature in (thermal strain, parameters of TEMP): no thermal forces.
+        let p = problem_with(&cfg.model, chmat, true).map_err(|e| e.at(cfg.span))?;
+        elastic_of_problem(cfg, p)?
+    } else {
+        elastic(cfg, chmat)?
     }
-    let e = elastic(cfg, chmat)?.storing_stresses(false);
+    .storing_stresses(false);
+    let refs = temperature_refs(chmat, e.mesh.cells.len());
     // The occurrence of COMPORTEMENT that decides each cell's law.
     let mut which: Vec<Option<usize>> = vec![None; e.mesh.cells.len()];
     for (k, b) in cfg.behaviours.iter().enumerate() {
@@ -257,10 +326,11 @@ pub fn plastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Plastic> {
         let ConceptData::MaterialField(MaterialField { cells, .. }) = &*data else {
             return Err(cfg.err("CHAM_MATER", format!("{} holds no material field", chmat.label())));
         };
-        let mut cache: Vec<((*const crate::concepts::Concept, Option<usize>), VonMises)> = Vec::new();
+        type Key = (*const crate::concepts::Concept, Option<usize>, Option<u64>);
+        let mut cache: Vec<(Key, VonMises)> = Vec::new();
         for &c in &e.bulk {
             let mc = cells[c].as_ref().expect("the elastic problem checked every bulk cell's material");
-            let key = (Rc::as_ptr(mc), which[c]);
+            let key = (Rc::as_ptr(mc), which[c], refs[c].map(f64::to_bits));
             let law = match cache.iter().find(|(k, _)| *k == key) {
                 Some((_, l)) => l.clone(),
                 None => {
@@ -268,7 +338,7 @@ pub fn plastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Plastic> {
                     let ConceptData::Material(mat) = &*md else { unreachable!("AFFE_MATERIAU holds materials") };
                     let b = which[c].map(|k| &cfg.behaviours[k]);
                     let relation = b.map_or("ELAS", |b| b.relation.as_str());
-                    let l = von_mises_of(mat, relation, &e.mesh.cell_names[c]).map_err(|err| match b {
+                    let l = von_mises_at(mat, relation, &e.mesh.cell_names[c], refs[c]).map_err(|err| match b {
                         Some(b) => b.err("RELATION", err.msg),
                         None => err.at(cfg.span),
                     })?;
@@ -290,10 +360,127 @@ pub fn plastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Plastic> {
             relations.push(r);
         }
     }
+    let temperature = if varc { Some(plastic_temperature(cfg, chmat, &e, &which)?) } else { None };
     let mut p = Plastic::new(e, &laws, relations.join(", ")).map_err(|err| err.at(cfg.span))?;
     p.elastic_prediction = cfg.matrices.prediction_elastic;
     p.elastic_correction = cfg.matrices.correction_elastic;
-    Ok(p)
+    Ok(match temperature {
+        Some(t) => p.with_temperature(t),
+        None => p,
+    })
+}
+
+/// Per mesh cell, the VALE_REF of the AFFE_VARC temperature that covers it (the last occurrence).
+fn temperature_refs(chmat: &ConceptRef, ncells: usize) -> Vec<Option<f64>> {
+    let mut out = vec![None; ncells];
+    if let ConceptData::MaterialField(MaterialField { varc, .. }) = &*chmat.data() {
+        for v in varc {
+            for &c in v.cells.iter().filter(|&&c| c < ncells) {
+                out[c] = v.vale_ref;
+            }
+        }
+    }
+    out
+}
+
+/// The temperature of AFFE_VARC as the plastic laws follow it: its sources, and per bulk cell it covers
+/// the law of COMPORTEMENT's relation (occurrence `which[c]`) and the thermal expansion coefficient at
+/// any temperature.
+fn plastic_temperature(
+    cfg: &Settings,
+    chmat: &ConceptRef,
+    e: &Elastic,
+    which: &[Option<usize>],
+) -> Result<Temperature> {
+    let data = chmat.data();
+    let ConceptData::MaterialField(MaterialField { varc, cells: mats, .. }) = &*data else {
+        return Err(cfg.err("CHAM_MATER", format!("{} holds no material field", chmat.label())));
+    };
+    let nnodes = e.mesh.nnodes();
+    let mut sources = Vec::with_capacity(varc.len());
+    let mut cells: Vec<Option<(f64, usize, LawOfTemperature)>> = vec![None; e.mesh.cells.len()];
+    let bulk: std::collections::HashSet<usize> = e.bulk.iter().copied().collect();
+    for (k, v) in varc.iter().enumerate() {
+        let tref = v.vale_ref.ok_or_else(|| {
+            cfg.err("CHAM_MATER", "AFFE_VARC: NOM_VARC='TEMP' needs VALE_REF (the temperature that strains nothing)")
+        })?;
+        for &c in v.cells.iter().filter(|c| bulk.contains(c)) {
+            let Some(mc) = mats[c].clone() else { continue };
+            let name = e.mesh.cell_names[c].clone();
+            let relation = which[c].map_or("ELAS".to_string(), |b| cfg.behaviours[b].relation.clone());
+            let alpha = {
+                let md = mc.data();
+                let ConceptData::Material(mat) = &*md else { continue };
+                alpha_of(mat, &name, tref).map_err(|e| cfg.locate(e, "CHAM_MATER"))?
+            };
+            let law: LawOfTemperature = Rc::new(move |t: f64| {
+                let md = mc.data();
+                let ConceptData::Material(mat) = &*md else {
+                    return Err("the material field holds no material".into());
+                };
+                let law = von_mises_at(mat, &relation, &name, Some(t)).map_err(|e| e.msg)?;
+                Ok((law, alpha(t).map_err(|e| e.msg)?))
+            });
+            cells[c] = Some((tref, k, law));
+        }
+        sources.push(varc_source(v, nnodes)?);
+    }
+    Ok(Temperature { sources, cells })
+}
+
+/// The thermal expansion coefficient of ELAS / ELAS_FO at a temperature, as Code_Aster defines it for a
+/// strain `α(T) (T − T_ref)`: ALPHA a real, or a function of TEMP given for a strain measured from
+/// TEMP_DEF_ALPHA, which is turned into the coefficient measured from `tref` point by point (`alfint`:
+/// within PRECISION of `tref`, the limit through the curve's slope). 0 without ALPHA.
+type Alpha = Rc<dyn Fn(f64) -> Result<f64>>;
+fn alpha_of(mat: &Material, cell: &str, tref: f64) -> Result<Alpha> {
+    let beh = if mat.behaviours.contains_key("ELAS") { "ELAS" } else { "ELAS_FO" };
+    let Some(v) = mat.behaviours.get(beh).and_then(|b| b.get("ALPHA")) else { return Ok(Rc::new(|_| Ok(0.0))) };
+    let tdef = mat_param(mat, beh, "TEMP_DEF_ALPHA", cell)?;
+    let func = match v {
+        MatValue::Func(c) => match &*c.data() {
+            ConceptData::Function(f) if f.nom_para == "TEMP" => Some(f.clone()),
+            _ => None,
+        },
+        _ => None,
+    };
+    let Some(f) = func else {
+        // A constant, or a formula of TEMP (no TEMP_DEF_ALPHA transform: Code_Aster asks for a function).
+        if tdef.is_some() && matches!(v, MatValue::Func(c) if matches!(&*c.data(), ConceptData::Formula(_))) {
+            return Err(Error::runtime(format!(
+                "cell {cell}: {beh}/ALPHA with TEMP_DEF_ALPHA must be a function (DEFI_FONCTION), not a formula"
+            )));
+        }
+        let (m, c) = (mat.clone(), cell.to_string());
+        return Ok(Rc::new(move |t| Ok(mat_param_at(&m, beh, "ALPHA", &c, Some(t))?.unwrap_or(0.0))));
+    };
+    let Some(tdef) = tdef.filter(|_| f.x.len() > 1) else {
+        return Ok(Rc::new(move |t| f.eval(t)));
+    };
+    let prec = mat_param(mat, beh, "PRECISION", cell)?.unwrap_or(1.0);
+    let a_ref = f.eval(tref)?;
+    let n = f.x.len();
+    let mut g = f.clone();
+    for i in 0..n {
+        let ti = f.x[i];
+        g.y[i] = if (ti - tref).abs() >= prec {
+            (f.y[i] * (ti - tdef) - a_ref * (tref - tdef)) / (ti - tref)
+        } else {
+            let slope = |j: usize| (f.y[j] - a_ref) / (f.x[j] - tref);
+            let d = match i {
+                0 => slope(1),
+                _ if i == n - 1 => slope(n - 2),
+                _ => 0.5 * (slope(i + 1) + slope(i - 1)),
+            };
+            if !d.is_finite() {
+                return Err(Error::runtime(format!(
+                    "cell {cell}: {beh}/ALPHA: two temperatures of the function lie at VALE_REF = {tref}"
+                )));
+            }
+            d * (tref - tdef) + a_ref
+        };
+    }
+    Ok(Rc::new(move |t| g.eval(t)))
 }
 
 /// The thermal strain of the material field's AFFE_VARC (NOM_VARC='TEMP') on the problem's bulk cells:
@@ -322,26 +509,31 @@ pub fn thermal_strain(chmat: &ConceptRef, p: &Problem) -> Result<Option<ThermalS
                 cells[c] = Some((alpha, tref, k));
             }
         }
-        sources.push(match &v.source {
-            VarcSource::Field(f) => {
-                let values = temp_of_field(f.field()?.reals(&f.label())?, nnodes, &f.label())?;
-                Box::new(move |_t| Ok(values.clone()))
-            }
-            VarcSource::Evol { result, field, fonc_inst } => {
-                let (result, field, prol, fonc) = (result.clone(), field.clone(), v.prol.clone(), fonc_inst.clone());
-                Box::new(move |t| {
-                    // FONC_INST: the result is read at the instant the function gives for the current one.
-                    let at = match &fonc {
-                        Some(f) => super::eval::eval_at(f, &[0.0; 3], t)
-                            .map_err(|e| Error::runtime(format!("AFFE_VARC/FONC_INST: {}", e.msg)))?,
-                        None => t,
-                    };
-                    temp_of_result(&result, &field, &prol, at, nnodes)
-                })
-            }
-        });
+        sources.push(varc_source(v, nnodes)?);
     }
     Ok(Some(ThermalStrain { sources, cells }))
+}
+
+/// The temperature at the nodes at any instant of one AFFE_VARC occurrence.
+fn varc_source(v: &crate::concepts::model::Varc, nnodes: usize) -> Result<NodalTemperature> {
+    Ok(match &v.source {
+        VarcSource::Field(f) => {
+            let values = temp_of_field(f.field()?.reals(&f.label())?, nnodes, &f.label())?;
+            Box::new(move |_t| Ok(values.clone()))
+        }
+        VarcSource::Evol { result, field, fonc_inst } => {
+            let (result, field, prol, fonc) = (result.clone(), field.clone(), v.prol.clone(), fonc_inst.clone());
+            Box::new(move |t| {
+                // FONC_INST: the result is read at the instant the function gives for the current one.
+                let at = match &fonc {
+                    Some(f) => super::eval::eval_at(f, &[0.0; 3], t)
+                        .map_err(|e| Error::runtime(format!("AFFE_VARC/FONC_INST: {}", e.msg)))?,
+                    None => t,
+                };
+                temp_of_result(&result, &field, &prol, at, nnodes)
+            })
+        }
+    })
 }
 
 /// The component TEMP of a field on nodes, per node (NaN where it has none).

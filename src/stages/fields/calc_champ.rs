@@ -14,7 +14,7 @@ use std::collections::HashSet;
 use crate::fem::elasticity::{self, Modelisation};
 use crate::fem::geometry::{bounded_cells, cell_coords, node_to_cells};
 use crate::fem::reference::{node_coords, shape_deriv};
-use crate::stages::core::problem::{coords_of, problem, Problem};
+use crate::stages::core::problem::{coords_of, problem, problem_at_ref, Problem};
 /// Component names of SIRO_ELEM, in Code_Aster's order (`EPJSIGM`).
 pub const SIRO_COMPONENTS: [&str; 16] = [
     "SIG_NX", "SIG_NY", "SIG_NZ", "SIG_N", "SIG_TX", "SIG_TY", "SIG_TZ", "SIG_T1X", "SIG_T1Y", "SIG_T1Z", "SIG_T1",
@@ -193,6 +193,9 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         "SIEF_ELNO",
         "SIEF_NOEU",
         "EPSP_ELGA",
+        "ENEL_ELGA",
+        "ENEL_ELNO",
+        "ETOT_ELGA",
         "EPSP_ELNO",
         "VARI_ELNO",
         "VARI_NOEU",
@@ -226,7 +229,7 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let kws: &[&str] = if hm {
         &["CONTRAINTE", "DEFORMATION", "CRITERES", "VARI_INTERNE"]
     } else {
-        &["CONTRAINTE", "DEFORMATION", "CRITERES", "VARI_INTERNE", "FORCE"]
+        &["CONTRAINTE", "DEFORMATION", "CRITERES", "VARI_INTERNE", "FORCE", "ENERGIE"]
     };
     for kw in kws {
         for o in a.texts(kw) {
@@ -237,9 +240,9 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             wanted.push(o);
         }
     }
-    a.refuse(&["ENERGIE", "ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"])?;
+    a.refuse(&["ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"])?;
     if hm {
-        a.refuse(&["FORCE"])?;
+        a.refuse(&["FORCE", "ENERGIE"])?;
     }
     let mesh = model.model()?.current_mesh();
     let restrict = if a.has("GROUP_MA") || a.has("MAILLE") {
@@ -280,11 +283,39 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let data = r.with_steps(steps);
         return Ok(Some(ConceptData::Result(data)));
     }
-    let p = problem(&model, &chmat).map_err(|e| e.at(a.span))?;
+    // A plastic result under AFFE_VARC's temperature holds its stresses: its materials (which may depend on
+    // TEMP) serve the strains only, taken at VALE_REF; the options that need the law at the temperature
+    // stop by name.
+    let plastic_varc = crate::stages::core::settings::has_varc(&chmat)
+        && !steps.is_empty()
+        && steps.iter().all(|s| s.fields.contains_key("VARI_ELGA") && s.fields.contains_key("SIEF_ELGA"));
+    if plastic_varc {
+        if let Some(o) = wanted.iter().find(|o| o.starts_with("EPSP_")) {
+            return Err(a.err("DEFORMATION", format!("{o} of a plastic result under AFFE_VARC is not supported yet")));
+        }
+    }
+    let p = if plastic_varc { problem_at_ref(&model, &chmat) } else { problem(&model, &chmat) }
+        .map_err(|e| e.at(a.span))?;
     // AFFE_VARC's thermal strain: the stresses are D (ε − ε_th), at each step's instant.
-    let thermal = crate::stages::core::problem::thermal_strain(&chmat, &p).map_err(|e| e.at(a.span))?;
+    let thermal = match plastic_varc {
+        true => None,
+        false => crate::stages::core::problem::thermal_strain(&chmat, &p).map_err(|e| e.at(a.span))?,
+    };
+    // ENEL: the elastic energy density ½ σ : S σ of ELAS (te0575, enelpg with small strains).
+    if wanted.iter().any(|o| o.starts_with("ENEL_")) && plastic_varc {
+        constant_elasticity(&chmat, &p).map_err(|e| a.locate(e, "ENERGIE"))?;
+    }
     let mesh = &p.mesh;
     let md = p.modelisation;
+    let etot = wanted.iter().any(|o| o == "ETOT_ELGA");
+    if etot && !orders.is_empty() {
+        return Err(a.err("ENERGIE", "ETOT_ELGA on some orders only is not supported yet (it sums over every step)"));
+    }
+    // ETOT: the work of the stresses summed over the steps in their order (the strains and stresses and
+    // the sum of the step before).
+    type Points = Vec<Option<Vec<f64>>>;
+    let mut before: Option<(Points, Points, Points)> = None;
+    steps.sort_by_key(|s| s.nume_ordre);
     for step in steps.iter_mut() {
         if !orders.is_empty() && !orders.contains(&step.nume_ordre) {
             continue;
@@ -322,6 +353,7 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let (mut sig_elga, mut eps_elga) = (vec![None; mesh.cells.len()], vec![None; mesh.cells.len()]);
         let (mut epsp_elga, mut epsp_elno) = (vec![None; mesh.cells.len()], vec![None; mesh.cells.len()]);
         let mut vari_elno = vec![None; mesh.cells.len()];
+        let (mut enel_elga, mut enel_elno) = (vec![None; mesh.cells.len()], vec![None; mesh.cells.len()]);
         // FORC_NODA on the nodes of the model (NaN elsewhere, as DEPL).
         let mut forc_noda: Vec<f64> = depl.iter().map(|v| if v.is_finite() { 0.0 } else { f64::NAN }).collect();
         for &c in p.bulk.iter().filter(|c| only(c)) {
@@ -377,6 +409,23 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                     epsp_elno[c] = Some(flat(&elasticity::gauss_to_nodes(md, t, &ep, ns), ns));
                 }
             }
+            if wanted.iter().any(|o| o.starts_with("ENEL_")) {
+                let sv = sig_elga[c].as_ref().expect("computed above");
+                let w: Vec<[f64; 6]> = points_of(sv, ns)
+                    .iter()
+                    .map(|sg| {
+                        let mut out = [0.0; 6];
+                        out[0] = elastic_energy(mat.e, mat.nu, sg);
+                        out
+                    })
+                    .collect();
+                if !mat.is_isotropic() {
+                    return Err(a.err("ENERGIE", "ENEL_* of an anisotropic material is not supported yet"));
+                }
+                enel_elga[c] = Some(w.iter().map(|x| x[0]).collect::<Vec<_>>());
+                let t = mesh.cell_types[c];
+                enel_elno[c] = Some(flat(&elasticity::gauss_to_nodes(md, t, &w, 1), 1));
+            }
             if wanted.iter().any(|o| o == "FORC_NODA") {
                 let sv = sig_elga[c].as_ref().expect("computed above");
                 let f = elasticity::internal_forces(md, mesh.cell_types[c], &xs, &points_of(sv, ns))
@@ -394,6 +443,32 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         let siro = match wanted.iter().any(|o| o == "SIRO_ELEM") {
             true => Some(siro_elem(&p, &model, depl, &only).map_err(|e| e.at(a.span))?),
             false => None,
+        };
+        let etot_elga: Points = if etot {
+            let half_work = |sig: &[f64], deps: &[f64]| -> f64 {
+                0.5 * (0..ns).map(|k| if k < 3 { sig[k] * deps[k] } else { 2.0 * sig[k] * deps[k] }).sum::<f64>()
+            };
+            let mut out = vec![None; mesh.cells.len()];
+            for &c in p.bulk.iter().filter(|c| only(c)) {
+                let (Some(e1), Some(s1)) = (&eps_elga[c], &sig_elga[c]) else { continue };
+                let v: Vec<f64> = match before.as_ref().map(|(e, s, w)| (&e[c], &s[c], &w[c])) {
+                    Some((Some(e0), Some(s0), Some(w0))) => (0..e1.len() / ns)
+                        .map(|g| {
+                            let r = g * ns..(g + 1) * ns;
+                            let de: Vec<f64> = e1[r.clone()].iter().zip(&e0[r.clone()]).map(|(x, y)| x - y).collect();
+                            w0[g] + half_work(&s1[r.clone()], &de) + half_work(&s0[r], &de)
+                        })
+                        .collect(),
+                    _ => (0..e1.len() / ns)
+                        .map(|g| half_work(&s1[g * ns..(g + 1) * ns], &e1[g * ns..(g + 1) * ns]))
+                        .collect(),
+                };
+                out[c] = Some(v);
+            }
+            before = Some((eps_elga.clone(), sig_elga.clone(), out.clone()));
+            out
+        } else {
+            Vec::new()
         };
         let sn: Vec<String> = md.sigma_names().iter().map(|s| s.to_string()).collect();
         let en: Vec<String> = md.epsilon_names().iter().map(|s| s.to_string()).collect();
@@ -419,6 +494,9 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                         .collect(),
                 },
                 "EPSI_ELNO" => Field::Elno { components: en.clone(), cells: eps_elno.clone() },
+                "ENEL_ELGA" => Field::Elga { components: vec!["TOTALE".into()], cells: enel_elga.clone() },
+                "ETOT_ELGA" => Field::Elga { components: vec!["TOTALE".into()], cells: etot_elga.clone() },
+                "ENEL_ELNO" => Field::Elno { components: vec!["TOTALE".into()], cells: enel_elno.clone() },
                 "SIGM_NOEU" => Field::Node { components: sn.clone(), values: to_nodes(mesh, &sig_elno, ns) },
                 "EPSI_NOEU" => Field::Node { components: en.clone(), values: to_nodes(mesh, &eps_elno, ns) },
                 // In linear elasticity the generalized and Cauchy stresses coincide.
@@ -444,6 +522,29 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let r = rc.result()?;
     let data = r.with_steps(steps);
     Ok(Some(ConceptData::Result(data)))
+}
+
+/// The elastic energy density `½ σ : S σ` of an isotropic law for the stress components `sig` (`XX YY ZZ
+/// XY [XZ YZ]`, absent ones zero).
+fn elastic_energy(e: f64, nu: f64, sig: &[f64; 6]) -> f64 {
+    let tr = sig[0] + sig[1] + sig[2];
+    let sq = sig[..3].iter().map(|s| s * s).sum::<f64>() + 2.0 * sig[3..].iter().map(|s| s * s).sum::<f64>();
+    ((1.0 + nu) * sq - nu * tr * tr) / (2.0 * e)
+}
+
+/// Whether the elastic parameters of every bulk cell are constants (not functions of TEMP): the options
+/// that need the law at the temperature of a plastic result under AFFE_VARC stop otherwise.
+fn constant_elasticity(chmat: &ConceptRef, p: &Problem) -> Result<()> {
+    let data = chmat.data();
+    let ConceptData::MaterialField(mf) = &*data else { return Ok(()) };
+    for &c in &p.bulk {
+        if let Some(mc) = &mf.cells[c] {
+            if let ConceptData::Material(m) = &*mc.data() {
+                crate::stages::core::problem::elastic_of(m, &p.mesh.cell_names[c])?;
+            }
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

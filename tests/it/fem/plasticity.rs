@@ -55,3 +55,25 @@ fn what_plasticity_does_not_take_is_refused_by_name() {
     assert_eq!(code, 2, "{err}");
     assert!(err.contains("D_SIGM_EPSI") && err.contains("smaller than the Young modulus"), "{err}");
 }
+
+/// comm/thermoplastic_bar.comm: a bar held at both ends and heated past yield, its TRACTION a nappe of
+/// TEMP and the temperature a THER_LINEAIRE result through AFFE_VARC — SIXX, V1 and ENEL_ELGA at every
+/// point of every step against the closed form to 1e-9 (the nappe interpolated in temperature as
+/// Code_Aster's `rctrac` does, the thermal strain taken off in the law as `nmisot` does).
+#[test]
+fn heated_bar_yields_along_a_hardening_curve_of_the_temperature() {
+    let out = crate::scratch!("thermoplastic_bar");
+    let opts = aster::runner::RunOptions { out_dir: Some(out.clone()), units: vec![], echo: false };
+    let o = aster::runner::run_export(&root().join("comm/thermoplastic_bar.export"), &opts);
+    assert_eq!(o.diagnostic, "OK", "{:?}", o.error);
+    assert_eq!((o.ok_count(), o.nook_count()), (31, 0));
+    let mess = std::fs::read_to_string(out.join("thermoplastic_bar.mess")).unwrap();
+    assert!(mess.contains("STAT_NON_LINE (C_PLAN, RELATION='VMIS_ISOT_TRAC'): 326 unknowns, 4 steps"), "{mess}");
+    let _ = std::fs::remove_dir_all(&out);
+    // Without the temperature the nappe cannot be read: the run stops by name.
+    let varc = ("    AFFE_VARC=_F(TOUT=\"OUI\", NOM_VARC=\"TEMP\", EVOL=TH, VALE_REF=TREF),\n", "");
+    let (code, err, _) =
+        run_scene_edited(&crate::scratch!("no_varc"), "thermoplastic_bar", &[(20, "strip_quad8.med")], &[varc]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("TRACTION/SIGM") && err.contains("nappe of TEMP"), "{err}");
+}
