@@ -49,6 +49,9 @@ pub struct ResultData {
     pub cara_elem: Option<ConceptRef>,
     pub loads: Vec<ConceptRef>,
     pub steps: Vec<Step>,
+    /// COMPORTEMENT of the command that computed it (STAT_NON_LINE): each relation and the cells it
+    /// covers (None: the whole model), in order, a later one over an earlier one; empty when unknown.
+    pub comportement: Vec<(String, Option<Vec<usize>>)>,
 }
 
 impl ResultData {
@@ -61,6 +64,7 @@ impl ResultData {
             cara_elem: self.cara_elem.clone(),
             loads: self.loads.clone(),
             steps,
+            comportement: self.comportement.clone(),
         }
     }
 

@@ -211,6 +211,25 @@ impl Hardening {
         Ok((Hardening::Curve { p, r, beyond }, e))
     }
 
+    /// The area under `R` from 0 to `p`: the plastic work per unit volume of a uniaxial path (`rcfonc`'s
+    /// AIRERP), past the last point of a curve along its continuation.
+    pub fn area(&self, at: f64) -> Result<f64, String> {
+        match self {
+            Hardening::Linear { sy, h } => Ok(sy * at + 0.5 * h * at * at),
+            Hardening::Curve { p, .. } => {
+                let mut sum = 0.0;
+                let mut x0 = 0.0;
+                let mut r0 = self.at(0.0)?.0;
+                for &x in p.iter().skip(1).filter(|&&x| x < at) {
+                    let r = self.at(x)?.0;
+                    sum += 0.5 * (r0 + r) * (x - x0);
+                    (x0, r0) = (x, r);
+                }
+                Ok(sum + 0.5 * (r0 + self.at(at)?.0) * (at - x0))
+            }
+        }
+    }
+
     /// The yield stress `R(0)`.
     pub fn yield_stress(&self) -> f64 {
         match self {

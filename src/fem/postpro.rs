@@ -78,3 +78,23 @@ mod tests {
         assert!((p[0] * p[1] * p[2] - det).abs() < 1e-10);
     }
 }
+
+/// The elastic energy density `½ σ : S σ` of an isotropic law for the stress components `sig` (`XX YY ZZ
+/// XY [XZ YZ]`, absent ones zero).
+pub fn elastic_energy(e: f64, nu: f64, sig: &[f64; 6]) -> f64 {
+    let tr = sig[0] + sig[1] + sig[2];
+    let sq = sig[..3].iter().map(|s| s * s).sum::<f64>() + 2.0 * sig[3..].iter().map(|s| s * s).sum::<f64>();
+    ((1.0 + nu) * sq - nu * tr * tr) / (2.0 * e)
+}
+
+#[cfg(test)]
+mod energy_tests {
+    /// Uniaxial σ: σ² / 2E; pure shear τ: τ² / 2G.
+    #[test]
+    fn elastic_energy_of_uniaxial_stress_and_shear() {
+        let (e, nu) = (200.0, 0.25);
+        assert!((super::elastic_energy(e, nu, &[10.0, 0.0, 0.0, 0.0, 0.0, 0.0]) - 100.0 / 400.0).abs() < 1e-14);
+        let g = e / (2.0 * (1.0 + nu));
+        assert!((super::elastic_energy(e, nu, &[0.0, 0.0, 0.0, 3.0, 0.0, 0.0]) - 9.0 / (2.0 * g)).abs() < 1e-14);
+    }
+}

@@ -100,6 +100,48 @@ fn post_releve_t() -> Command {
         ])
 }
 
+// ------------------------------------------------------------------ POST_ELEM
+
+/// POST_ELEM's energies (ENER_POT, ENER_ELAS, ENER_TOTALE): Code_Aster's keywords for them; its other
+/// quantities (MASS_INER, INTEGRALE, MINMAX, ...) are not in this schema and stop by name.
+fn post_elem() -> Command {
+    let places = || fact_places();
+    let mut kw = kws![
+        fact("ENER_POT", places()).many().rules(vec![un_parmi(&["TOUT", "GROUP_MA"])]),
+        fact("ENER_ELAS", places()).many().rules(vec![un_parmi(&["TOUT", "GROUP_MA"])]),
+        fact("ENER_TOTALE", places()).many().rules(vec![un_parmi(&["TOUT", "GROUP_MA"])]),
+        simp("MODELE").co(&[ConceptKind::Modele]),
+        simp("CHAM_MATER").co(&[ConceptKind::ChamMater]),
+        simp("CARA_ELEM").co(&[ConceptKind::CaraElem]),
+        simp("NUME_COUCHE").i().d(1),
+        simp("NIVE_COUCHE").txt().d("MOY").one_of(&["INF", "SUP", "MOY"]),
+        simp("ANGLE").i().d(0),
+        simp("MODE_FOURIER").i().d(0),
+        simp("CHAM_GD").co(&[ConceptKind::ChamNo, ConceptKind::ChamElem]),
+        simp("RESULTAT").co(&[ConceptKind::EvolElas, ConceptKind::EvolNoli]),
+        simp("TOUT_ORDRE").txt().one_of(&["OUI"]),
+        simp("NUME_ORDRE").i().many(),
+        simp("LIST_ORDRE").co(&[ConceptKind::ListIs]),
+        simp("INST").r().many(),
+        simp("LIST_INST").co(&[ConceptKind::ListR8]),
+        simp("TITRE").txt().many(),
+    ];
+    kw.extend(crit_prec());
+    Command::new("POST_ELEM", "Compute global quantities (energies) of a mechanical result on a model.")
+        .produces(ConceptKind::Table)
+        .kw(kw)
+        .rules(vec![
+            un_parmi(&["ENER_POT", "ENER_ELAS", "ENER_TOTALE"]),
+            exclus(&["CHAM_GD", "RESULTAT"]),
+            exclus(&["TOUT_ORDRE", "NUME_ORDRE", "LIST_ORDRE", "INST", "LIST_INST"]),
+        ])
+}
+
+/// TOUT or GROUP_MA, one of them.
+fn fact_places() -> Vec<Entry> {
+    kws![simp("TOUT").txt().one_of(&["OUI"]), simp("GROUP_MA").txt().many()]
+}
+
 // ------------------------------------------------------------------ POST_ERREUR
 
 /// Code_Aster's `post_erreur.py`: one field (CHAM_GD) against reference FORMULEs of X, Y (, Z), one per
@@ -136,5 +178,5 @@ fn post_erreur() -> Command {
 }
 
 pub fn commands() -> Vec<Command> {
-    vec![post_releve_t(), post_erreur()]
+    vec![post_releve_t(), post_erreur(), post_elem()]
 }

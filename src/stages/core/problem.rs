@@ -428,6 +428,29 @@ fn plastic_temperature(
     Ok(Temperature { sources, cells })
 }
 
+/// Per mesh cell of the problem's bulk under AFFE_VARC's temperature: the temperature of its nodes at `t`
+/// (None elsewhere).
+pub fn cell_temperatures(chmat: &ConceptRef, p: &Problem, t: f64) -> Result<Vec<Option<Vec<f64>>>> {
+    let data = chmat.data();
+    let mut out = vec![None; p.mesh.cells.len()];
+    let ConceptData::MaterialField(MaterialField { varc, .. }) = &*data else { return Ok(out) };
+    for v in varc {
+        let nodal = varc_source(v, p.mesh.nnodes())?(t)?;
+        let n = out.len();
+        for &c in v.cells.iter().filter(|&&c| c < n && p.materials[c].is_some()) {
+            let temps: Vec<f64> = p.mesh.cells[c].iter().map(|&n| nodal.get(n).copied().unwrap_or(f64::NAN)).collect();
+            if let Some(k) = temps.iter().position(|x| !x.is_finite()) {
+                return Err(Error::runtime(format!(
+                    "AFFE_VARC: no temperature at node {} of cell {} at INST={t}",
+                    p.mesh.node_names[p.mesh.cells[c][k]], p.mesh.cell_names[c]
+                )));
+            }
+            out[c] = Some(temps);
+        }
+    }
+    Ok(out)
+}
+
 /// The thermal expansion coefficient of ELAS / ELAS_FO at a temperature, as Code_Aster defines it for a
 /// strain `α(T) (T − T_ref)`: ALPHA a real, or a function of TEMP given for a strain measured from
 /// TEMP_DEF_ALPHA, which is turned into the coefficient measured from `tref` point by point (`alfint`:

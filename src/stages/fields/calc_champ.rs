@@ -5,7 +5,7 @@ use crate::concepts::model::Role;
 use crate::concepts::result::{Field, ResultData, Step};
 use crate::concepts::{ConceptData, ConceptRef};
 use crate::diag::{Error, Result};
-use crate::fem::postpro::{equivalent_stresses, to_nodes, SIEQ_COMPONENTS};
+use crate::fem::postpro::{elastic_energy, equivalent_stresses, to_nodes, SIEQ_COMPONENTS};
 use crate::mesh::CellType;
 use crate::stages::Ctx;
 use nalgebra::{Matrix3, Vector3};
@@ -174,6 +174,7 @@ fn nothing_computed(ctx: &mut Ctx, rc: &ConceptRef, what: &str, steps: Vec<Step>
         cara_elem: r.cara_elem.clone(),
         loads: r.loads.clone(),
         steps,
+        comportement: Vec::new(),
     }))
 }
 
@@ -524,17 +525,9 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     Ok(Some(ConceptData::Result(data)))
 }
 
-/// The elastic energy density `½ σ : S σ` of an isotropic law for the stress components `sig` (`XX YY ZZ
-/// XY [XZ YZ]`, absent ones zero).
-fn elastic_energy(e: f64, nu: f64, sig: &[f64; 6]) -> f64 {
-    let tr = sig[0] + sig[1] + sig[2];
-    let sq = sig[..3].iter().map(|s| s * s).sum::<f64>() + 2.0 * sig[3..].iter().map(|s| s * s).sum::<f64>();
-    ((1.0 + nu) * sq - nu * tr * tr) / (2.0 * e)
-}
-
 /// Whether the elastic parameters of every bulk cell are constants (not functions of TEMP): the options
 /// that need the law at the temperature of a plastic result under AFFE_VARC stop otherwise.
-fn constant_elasticity(chmat: &ConceptRef, p: &Problem) -> Result<()> {
+pub(crate) fn constant_elasticity(chmat: &ConceptRef, p: &Problem) -> Result<()> {
     let data = chmat.data();
     let ConceptData::MaterialField(mf) = &*data else { return Ok(()) };
     for &c in &p.bulk {

@@ -220,7 +220,14 @@ fn affe(ctx: &mut Ctx, a: &Args) -> Result<ResultData> {
         );
     }
     steps.sort_by_key(|s| s.nume_ordre);
-    Ok(ResultData { model, material: material.or(base_material), cara_elem: cara, loads, steps })
+    Ok(ResultData {
+        model,
+        material: material.or(base_material),
+        cara_elem: cara,
+        loads,
+        steps,
+        comportement: Vec::new(),
+    })
 }
 
 fn asse(ctx: &mut Ctx, a: &Args) -> Result<ResultData> {
@@ -285,7 +292,7 @@ fn asse(ctx: &mut Ctx, a: &Args) -> Result<ResultData> {
     }
     ctx.io.mess(&mess);
     let (model, material) = first.ok_or_else(|| a.err("ASSE", "no result given"))?;
-    Ok(ResultData { model, material, cara_elem: None, loads: Vec::new(), steps })
+    Ok(ResultData { model, material, cara_elem: None, loads: Vec::new(), steps, comportement: Vec::new() })
 }
 
 // ------------------------------------------------------------------ PROL_RTZ
@@ -465,7 +472,7 @@ fn prol_rtz(ctx: &mut Ctx, a: &Args) -> Result<ResultData> {
         steps.push(Step { nume_ordre: k as i64 + 1, inst: t, fields: BTreeMap::from([("TEMP".to_string(), field)]) });
     }
     let model = bare_model(&mesh_c).map_err(|e| occ.locate(e, "MAILLAGE_FINAL"))?;
-    Ok(ResultData { model, material: None, cara_elem: None, loads: Vec::new(), steps })
+    Ok(ResultData { model, material: None, cara_elem: None, loads: Vec::new(), steps, comportement: Vec::new() })
 }
 
 #[cfg(test)]

@@ -378,7 +378,14 @@ pub fn modi_repere(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     if !text.is_empty() {
         ctx.io.mess(&text);
     }
-    Ok(Some(ConceptData::Result(ResultData { model, material, cara_elem, loads, steps: chosen })))
+    Ok(Some(ConceptData::Result(ResultData {
+        model,
+        material,
+        cara_elem,
+        loads,
+        steps: chosen,
+        comportement: Vec::new(),
+    })))
 }
 
 #[cfg(test)]

@@ -1,7 +1,9 @@
 //! POST_RELEVE_T (EXTRACTION): values of results (RESULTAT) and of nodal fields (CHAM_GD) as a table; POST_ERREUR (`erreur`): error
 //! norms of a field against reference formulas.
 
+mod elem;
 mod erreur;
+pub use elem::post_elem;
 pub use erreur::post_erreur;
 
 use crate::catalog::args::Args;

@@ -284,7 +284,14 @@ pub fn lire_resu(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         return Err(a.err("FORMAT_MED", format!("no field was read from unit {unit} at the steps asked")));
     }
     drop(model);
-    Ok(Some(ConceptData::Result(ResultData { model: model_c, material, cara_elem: None, loads, steps })))
+    Ok(Some(ConceptData::Result(ResultData {
+        model: model_c,
+        material,
+        cara_elem: None,
+        loads,
+        steps,
+        comportement: Vec::new(),
+    })))
 }
 
 pub fn lire_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {

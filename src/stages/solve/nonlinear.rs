@@ -68,5 +68,6 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         cara_elem: cfg.cara_elem.clone(),
         loads: cfg.loads(),
         steps,
+        comportement: cfg.behaviours.iter().map(|b| (b.relation.clone(), b.cells.clone())).collect(),
     })))
 }

@@ -52,5 +52,6 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         cara_elem: cfg.cara_elem.clone(),
         loads: cfg.loads(),
         steps,
+        comportement: Vec::new(),
     })))
 }

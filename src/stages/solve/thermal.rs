@@ -120,5 +120,6 @@ fn run(ctx: &mut Ctx, a: &Args, command: Command) -> Result<Option<ConceptData>>
         cara_elem: cfg.cara_elem.clone(),
         loads: cfg.loads(),
         steps,
+        comportement: Vec::new(),
     })))
 }

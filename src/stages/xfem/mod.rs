@@ -564,6 +564,7 @@ pub fn post_cham_xfem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         cara_elem: None,
         loads: Vec::new(),
         steps,
+        comportement: Vec::new(),
     })))
 }
 

@@ -46,5 +46,6 @@ pub fn stat_non_line_hm(ctx: &mut Ctx, cfg: &Settings) -> Result<Option<ConceptD
         cara_elem: cfg.cara_elem.clone(),
         loads: cfg.loads(),
         steps,
+        comportement: Vec::new(),
     })))
 }

@@ -130,6 +130,7 @@ fn solve_xfem(ctx: &mut Ctx, cfg: &Settings, init: Option<state::Source>) -> Res
         cara_elem: cfg.cara_elem.clone(),
         loads: cfg.loads(),
         steps,
+        comportement: Vec::new(),
     })))
 }
 
