@@ -1,8 +1,10 @@
 //! POST_RELEVE_T (EXTRACTION): values of results (RESULTAT) and of nodal fields (CHAM_GD) as a table; POST_ERREUR (`erreur`): error
-//! norms of a field against reference formulas.
+//! norms of a field against reference formulas; MACR_LIGN_COUPE (`lign_coupe`): values along lines.
 
 mod erreur;
+mod lign_coupe;
 pub use erreur::post_erreur;
+pub use lign_coupe::macr_lign_coupe;
 
 use crate::catalog::args::Args;
 use crate::concepts::result::{Field, Step};
