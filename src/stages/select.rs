@@ -76,6 +76,30 @@ pub fn select_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usiz
     Ok(nodes)
 }
 
+/// The nodes of NOEUD then of the groups of GROUP_NO, in the order given, each once (less SANS_GROUP_NO):
+/// the list of nodes POST_RELEVE_T follows (`rvgnoe`), whose order makes its curvilinear abscissa.
+pub fn nodes_in_order(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
+    let mut listed: Vec<usize> = Vec::new();
+    let names = occ.texts_if_declared("NOEUD");
+    if !names.is_empty() {
+        let index: HashMap<&str, usize> = mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+        for n in names {
+            let k = index.get(n.as_str()).copied().or_else(|| crate::mesh::numbered(&n, 'N', mesh.coords.len()));
+            listed.push(k.ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {mesh_name}")))?);
+        }
+    }
+    for g in occ.texts_if_declared("GROUP_NO") {
+        let members = mesh
+            .node_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {mesh_name}")))?;
+        listed.extend(members.iter().copied());
+    }
+    let kept = select_nodes(mesh, occ, mesh_name)?;
+    let mut seen = std::collections::HashSet::new();
+    Ok(listed.into_iter().filter(|n| kept.binary_search(n).is_ok() && seen.insert(*n)).collect())
+}
+
 // ------------------------------------------------------------------ table rows (FILTRE)
 
 fn matches_eq(cell: &Cell, occ: &Args) -> Result<bool> {

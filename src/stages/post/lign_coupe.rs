@@ -474,7 +474,7 @@ fn moments(s: &[f64], v: &[f64]) -> [f64; 6] {
 
 /// The unit tangents' normals of a 2D line at its points (POST_RELEVE_T's `rvrlln`, LOCAL): at an inner
 /// point the mean of the two segments' normals.
-fn line_normals(p: &[[f64; 3]]) -> Vec<[f64; 2]> {
+pub(super) fn line_normals(p: &[[f64; 3]]) -> Vec<[f64; 2]> {
     let n = p.len();
     let seg = |i: usize| {
         let (dx, dy) = (p[i + 1][0] - p[i][0], p[i + 1][1] - p[i][1]);
@@ -494,13 +494,41 @@ fn line_normals(p: &[[f64; 3]]) -> Vec<[f64; 2]> {
         .collect()
 }
 
-type Row = Vec<(String, Cell)>;
+pub(super) type Row = Vec<(String, Cell)>;
 
 fn real(v: f64) -> Cell {
     if v.is_finite() {
         Cell::Real(v)
     } else {
         Cell::Empty
+    }
+}
+
+/// TRAC_NOR on a 2D line (POST_RELEVE_T's `rvpstd` on the normal `n` of the line at a point): the normal
+/// trace of a tensor field (SIGM*, SIEF*, EPSI*: TR_NOR_1..3 from its own components), or the normal
+/// component of a vector given by the first two components asked (`ks`) (TRAC_NOR). `v` holds every
+/// component of the field at the point (None: no value there).
+pub(super) fn normal_trace(nom_cham: &str, comps: &[String], v: Option<&[f64]>, ks: &[usize], n: [f64; 2]) -> Row {
+    let tensor = ["SIGM", "SIEF", "EPSI"].iter().any(|p| nom_cham.starts_with(p));
+    let Some(v) = v else {
+        return if tensor {
+            ["TR_NOR_1", "TR_NOR_2", "TR_NOR_3"].iter().map(|c| (c.to_string(), Cell::Empty)).collect()
+        } else {
+            vec![("TRAC_NOR".into(), Cell::Empty)]
+        };
+    };
+    let fin = |x: f64| if x.is_finite() { x } else { 0.0 };
+    if tensor {
+        let pre = if nom_cham.starts_with("EPSI") { "EP" } else { "SI" };
+        let g = |c: &str| comps.iter().position(|x| *x == format!("{pre}{c}")).map(|i| fin(v[i])).unwrap_or(0.0);
+        vec![
+            ("TR_NOR_1".into(), real(g("XX") * n[0] + g("XY") * n[1])),
+            ("TR_NOR_2".into(), real(g("XY") * n[0] + g("YY") * n[1])),
+            ("TR_NOR_3".into(), real(g("XZ") * n[0] + g("YZ") * n[1])),
+        ]
+    } else {
+        let c = |i: usize| ks.get(i).map(|&k| fin(v[k])).unwrap_or(0.0);
+        vec![("TRAC_NOR".into(), real(c(0) * n[0] + c(1) * n[1]))]
     }
 }
 
@@ -747,26 +775,7 @@ pub fn macr_lign_coupe(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 }
                 let v = at(j);
                 if trac_nor {
-                    let n = normals[j];
-                    let g = |c: &str| {
-                        v.and_then(|v| comps.iter().position(|x| x == c).map(|i| v[i]))
-                            .filter(|x| x.is_finite())
-                            .unwrap_or(0.0)
-                    };
-                    match turns(&nom_cham, dim) {
-                        Some(Turns::Tensor(_)) => {
-                            row.push(("TR_NOR_1".into(), real(g("SIXX") * n[0] + g("SIXY") * n[1])));
-                            row.push(("TR_NOR_2".into(), real(g("SIXY") * n[0] + g("SIYY") * n[1])));
-                            row.push(("TR_NOR_3".into(), real(g("SIXZ") * n[0] + g("SIYZ") * n[1])));
-                        }
-                        _ => {
-                            let c = |i: usize| {
-                                v.map(|v| v[ks[i.min(ks.len() - 1)]]).filter(|x| x.is_finite()).unwrap_or(0.0)
-                            };
-                            let y = if ks.len() > 1 { c(1) } else { 0.0 };
-                            row.push(("TRAC_NOR".into(), real(c(0) * n[0] + y * n[1])));
-                        }
-                    }
+                    row.extend(normal_trace(&nom_cham, &comps, v.map(|v| v.as_slice()), &ks, normals[j]));
                 } else {
                     for (c, &k) in wanted.iter().zip(&ks) {
                         row.push((c.clone(), v.map(|v| real(v[k])).unwrap_or(Cell::Empty)));
