@@ -49,21 +49,8 @@ pub fn select_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usiz
             nodes.extend(mesh.cells[c].iter().copied());
         }
     }
-    for g in occ.texts_if_declared("GROUP_NO") {
-        let members = mesh
-            .node_groups
-            .get(&g)
-            .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {mesh_name}")))?;
-        nodes.extend(members.iter().copied());
-    }
-    let names = occ.texts_if_declared("NOEUD");
-    if !names.is_empty() {
-        let index: HashMap<&str, usize> = mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
-        for n in names {
-            let k = index.get(n.as_str()).copied().or_else(|| crate::mesh::numbered(&n, 'N', mesh.coords.len()));
-            nodes.push(k.ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {mesh_name}")))?);
-        }
-    }
+    nodes.extend(group_no_nodes(mesh, occ, mesh_name)?);
+    nodes.extend(noeud_nodes(mesh, occ, mesh_name)?);
     for g in occ.texts_if_declared("SANS_GROUP_NO") {
         let members = mesh
             .node_groups
@@ -79,25 +66,40 @@ pub fn select_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usiz
 /// The nodes of NOEUD then of the groups of GROUP_NO, in the order given, each once (less SANS_GROUP_NO):
 /// the list of nodes POST_RELEVE_T follows (`rvgnoe`), whose order makes its curvilinear abscissa.
 pub fn nodes_in_order(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
-    let mut listed: Vec<usize> = Vec::new();
-    let names = occ.texts_if_declared("NOEUD");
-    if !names.is_empty() {
-        let index: HashMap<&str, usize> = mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
-        for n in names {
-            let k = index.get(n.as_str()).copied().or_else(|| crate::mesh::numbered(&n, 'N', mesh.coords.len()));
-            listed.push(k.ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {mesh_name}")))?);
-        }
-    }
+    let mut listed = noeud_nodes(mesh, occ, mesh_name)?;
+    listed.extend(group_no_nodes(mesh, occ, mesh_name)?);
+    let kept = select_nodes(mesh, occ, mesh_name)?;
+    let mut seen = std::collections::HashSet::new();
+    Ok(listed.into_iter().filter(|n| kept.binary_search(n).is_ok() && seen.insert(*n)).collect())
+}
+
+/// The nodes of the groups of GROUP_NO, in the order given.
+fn group_no_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
+    let mut nodes = Vec::new();
     for g in occ.texts_if_declared("GROUP_NO") {
         let members = mesh
             .node_groups
             .get(&g)
             .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {mesh_name}")))?;
-        listed.extend(members.iter().copied());
+        nodes.extend(members.iter().copied());
     }
-    let kept = select_nodes(mesh, occ, mesh_name)?;
-    let mut seen = std::collections::HashSet::new();
-    Ok(listed.into_iter().filter(|n| kept.binary_search(n).is_ok() && seen.insert(*n)).collect())
+    Ok(nodes)
+}
+
+/// The nodes NOEUD names, in the order given.
+fn noeud_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
+    let names = occ.texts_if_declared("NOEUD");
+    if names.is_empty() {
+        return Ok(Vec::new());
+    }
+    let index: HashMap<&str, usize> = mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+    names
+        .iter()
+        .map(|n| {
+            let k = index.get(n.as_str()).copied().or_else(|| crate::mesh::numbered(n, 'N', mesh.coords.len()));
+            k.ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {mesh_name}")))
+        })
+        .collect()
 }
 
 // ------------------------------------------------------------------ table rows (FILTRE)
