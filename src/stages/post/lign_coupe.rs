@@ -26,7 +26,9 @@
 //!   ANGLE. OPERATION='MOYENNE': six rows per step (QUANTITE MOMENT_0, MOMENT_1, MINIMUM, MAXIMUM,
 //!   MOYE_INT, MOYE_EXT) of POST_RELEVE_T's `rvpstm` over the line.
 //!
-//! What the stage does not compute (REPERE='POLAIRE', INVARIANT, ELEM_PRINCIPAUX, RESULTANTE, TRAC_DIR,
+//! INVARIANT gives VMIS, TRESCA, TRACE and DETER of a tensor field at each point.
+//!
+//! What the stage does not compute (REPERE='POLAIRE', ELEM_PRINCIPAUX, RESULTANTE, TRAC_DIR,
 //! fields at Gauss points, UNITE_MAILLAGE) stops the run by name.
 
 use crate::catalog::args::Args;
@@ -509,7 +511,7 @@ fn real(v: f64) -> Cell {
 /// component of a vector given by the first two components asked (`ks`) (TRAC_NOR). `v` holds every
 /// component of the field at the point (None: no value there).
 pub(super) fn normal_trace(nom_cham: &str, comps: &[String], v: Option<&[f64]>, ks: &[usize], n: [f64; 2]) -> Row {
-    let tensor = ["SIGM", "SIEF", "EPSI"].iter().any(|p| nom_cham.starts_with(p));
+    let tensor = tensor_prefix(nom_cham).is_some();
     let Some(v) = v else {
         return if tensor {
             ["TR_NOR_1", "TR_NOR_2", "TR_NOR_3"].iter().map(|c| (c.to_string(), Cell::Empty)).collect()
@@ -519,7 +521,7 @@ pub(super) fn normal_trace(nom_cham: &str, comps: &[String], v: Option<&[f64]>, 
     };
     let fin = |x: f64| if x.is_finite() { x } else { 0.0 };
     if tensor {
-        let pre = if nom_cham.starts_with("EPSI") { "EP" } else { "SI" };
+        let pre = tensor_prefix(nom_cham).unwrap_or("SI");
         let g = |c: &str| comps.iter().position(|x| *x == format!("{pre}{c}")).map(|i| fin(v[i])).unwrap_or(0.0);
         vec![
             ("TR_NOR_1".into(), real(g("XX") * n[0] + g("XY") * n[1])),
@@ -530,6 +532,34 @@ pub(super) fn normal_trace(nom_cham: &str, comps: &[String], v: Option<&[f64]>, 
         let c = |i: usize| ks.get(i).map(|&k| fin(v[k])).unwrap_or(0.0);
         vec![("TRAC_NOR".into(), real(c(0) * n[0] + c(1) * n[1]))]
     }
+}
+
+/// The prefix of a tensor field's components (SIGM*, SIEF*: SI; EPSI*: EP), None for other fields
+/// (POST_RELEVE_T's `T3` quantities).
+fn tensor_prefix(nom_cham: &str) -> Option<&'static str> {
+    if nom_cham.starts_with("SIGM") || nom_cham.starts_with("SIEF") {
+        Some("SI")
+    } else if nom_cham.starts_with("EPSI") {
+        Some("EP")
+    } else {
+        None
+    }
+}
+
+/// INVARIANT (POST_RELEVE_T's `rvinvt`) of the tensor of a point: VMIS (√(3/2 s:s) of its deviator s),
+/// TRESCA (the largest principal value less the smallest), TRACE and DETER. Missing components are 0.
+fn invariants(nom_cham: &str, comps: &[String], v: &[f64]) -> [f64; 4] {
+    let pre = tensor_prefix(nom_cham).unwrap_or("SI");
+    let g = |c: &str| {
+        comps.iter().position(|x| *x == format!("{pre}{c}")).map(|i| v[i]).filter(|x| x.is_finite()).unwrap_or(0.0)
+    };
+    let t = Matrix3::new(g("XX"), g("XY"), g("XZ"), g("XY"), g("YY"), g("YZ"), g("XZ"), g("YZ"), g("ZZ"));
+    let trace = t.trace();
+    let dev = t - Matrix3::identity() * (trace / 3.0);
+    let vmis = (1.5 * dev.component_mul(&dev).sum()).sqrt();
+    let eig = t.symmetric_eigenvalues();
+    let tresca = eig.max() - eig.min();
+    [vmis, tresca, trace, t.determinant()]
 }
 
 /// The field name a CHAM_GD gives by default, from its components (Code_Aster reads it from the physical
@@ -549,7 +579,7 @@ fn default_name(comps: &[String]) -> Option<&'static str> {
 
 pub fn macr_lign_coupe(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     for occ in a.facts("LIGN_COUPE") {
-        occ.refuse(&["INVARIANT", "ELEM_PRINCIPAUX", "RESULTANTE", "MOMENT", "POINT", "TRAC_DIR", "DIRECTION"])?;
+        occ.refuse(&["ELEM_PRINCIPAUX", "RESULTANTE", "MOMENT", "POINT", "TRAC_DIR", "DIRECTION"])?;
     }
     a.refuse(&["UNITE_MAILLAGE", "NUME_MODE"])?;
     // The steps (number, instant, field) and the model.
@@ -734,6 +764,13 @@ pub fn macr_lign_coupe(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             absc[i] = absc[i - 1] + d.norm();
         }
         let trac_nor = occ.text("TRAC_NOR") == Some("OUI");
+        let invariant = occ.text("INVARIANT") == Some("OUI");
+        if invariant && (tensor_prefix(&nom_cham).is_none() || occ.text("OPERATION") == Some("MOYENNE")) {
+            return Err(occ.err(
+                "INVARIANT",
+                format!("INVARIANT of {nom_cham} (only of a tensor field, with EXTRACTION) is not supported yet"),
+            ));
+        }
         if trac_nor && dim != 2 {
             return Err(occ.err("TRAC_NOR", "TRAC_NOR on a line of a 3D mesh is not supported yet"));
         }
@@ -776,6 +813,11 @@ pub fn macr_lign_coupe(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 let v = at(j);
                 if trac_nor {
                     row.extend(normal_trace(&nom_cham, &comps, v.map(|v| v.as_slice()), &ks, normals[j]));
+                } else if invariant {
+                    let inv = v.map(|v| invariants(&nom_cham, &comps, v));
+                    for (k, name) in ["VMIS", "TRESCA", "TRACE", "DETER"].iter().enumerate() {
+                        row.push((name.to_string(), inv.map(|i| real(i[k])).unwrap_or(Cell::Empty)));
+                    }
                 } else {
                     for (c, &k) in wanted.iter().zip(&ks) {
                         row.push((c.clone(), v.map(|v| real(v[k])).unwrap_or(Cell::Empty)));
@@ -791,7 +833,8 @@ pub fn macr_lign_coupe(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     // Columns: the fixed head, the components in order of first appearance, then the traces, QUANTITE and
     // ANGLE, as the macro's table orders them.
     const HEAD: [&str; 8] = ["INTITULE", "NOM_CHAM", "NUME_ORDRE", "INST", "ABSC_CURV", "COOR_X", "COOR_Y", "COOR_Z"];
-    const TAIL: [&str; 6] = ["TRAC_NOR", "TR_NOR_1", "TR_NOR_2", "TR_NOR_3", "QUANTITE", "ANGLE"];
+    const TAIL: [&str; 10] =
+        ["VMIS", "TRESCA", "TRACE", "DETER", "TRAC_NOR", "TR_NOR_1", "TR_NOR_2", "TR_NOR_3", "QUANTITE", "ANGLE"];
     let mut names: Vec<String> = HEAD.iter().map(|s| s.to_string()).collect();
     for r in &rows {
         for (n, _) in r {
@@ -848,6 +891,19 @@ mod tests {
         assert_eq!(n[0], [0.0, 1.0]);
         assert_eq!(n[1], [-0.5, 0.5]);
         assert_eq!(n[2], [-1.0, 0.0]);
+    }
+
+    #[test]
+    fn invariants_of_a_tensor() {
+        // σ = diag(3, 1, 0) + 2 (e_x e_y + e_y e_x): principal values 2 ± √5, 0.
+        let names: Vec<String> = ["SIXX", "SIYY", "SIZZ", "SIXY"].iter().map(|s| s.to_string()).collect();
+        let [vmis, tresca, trace, det] = invariants("SIGM_ELNO", &names, &[3.0, 1.0, 0.0, 2.0]);
+        let (a, b, c, xy): (f64, f64, f64, f64) = (3.0, 1.0, 0.0, 2.0);
+        let want = (0.5 * ((a - b).powi(2) + (b - c).powi(2) + (c - a).powi(2)) + 3.0 * xy * xy).sqrt();
+        assert!((vmis - want).abs() < 1e-12);
+        assert!((tresca - 2.0 * 5f64.sqrt()).abs() < 1e-12, "{tresca}");
+        assert_eq!(trace, 4.0);
+        assert!(det.abs() < 1e-12);
     }
 
     #[test]

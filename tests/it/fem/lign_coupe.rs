@@ -6,7 +6,7 @@
 //! Checked in the table, through TEST_TABLE: DX along an oblique segment; a segment that starts outside
 //! the plate (its first point is left out and ABSC_CURV starts at the first point kept); SIGM_ELNO in
 //! the local frame of a segment at 45° (the tensor turned: σ'xx = σ'yy = (σxx + σyy) / 2, σ'xy =
-//! (σyy − σxx) / 2); OPERATION='MOYENNE' (the mean and the linear part's variation of DX); a group of
+//! (σyy − σxx) / 2) and its invariants; OPERATION='MOYENNE' (the mean and the linear part's variation of DX); a group of
 //! nodes; a field (CHAM_GD) with MODELE; a refusal by name.
 
 use aster::med;
@@ -101,6 +101,8 @@ fn stresses_in_the_local_frame_moyenne_groups_and_fields() {
          T5 = MACR_LIGN_COUPE(RESULTAT=R, NOM_CHAM='DEPL', LIGN_COUPE=_F(TYPE='GROUP_NO', GROUP_NO='TOP',\n\
          NOM_CMP='DX'))\n\
          U = CREA_CHAMP(TYPE_CHAM='NOEU_DEPL_R', OPERATION='EXTR', RESULTAT=R, NOM_CHAM='DEPL', NUME_ORDRE=1)\n\
+         T7 = MACR_LIGN_COUPE(RESULTAT=R, NOM_CHAM='SIGM_ELNO', LIGN_COUPE=_F(NB_POINTS=3, COOR_ORIG=(0.1, 0.2),\n\
+         COOR_EXTR=(1.9, 0.8), INVARIANT='OUI'))\n\
          T6 = MACR_LIGN_COUPE(CHAM_GD=U, MODELE=MO, LIGN_COUPE=_F(NB_POINTS=2, COOR_ORIG=(0.25, 0.25),\n\
          COOR_EXTR=(1.75, 0.75), NOM_CMP='DX', INTITULE='CHAMP'))\n",
     );
@@ -115,10 +117,14 @@ fn stresses_in_the_local_frame_moyenne_groups_and_fields() {
     body += &check("T5", "DX", "SOMM", 5.0 * EPS, "");
     body += &check("T5", "ABSC_CURV", "MAX", 2.0, "");
     body += &check("T6", "DX", "SOMM", EPS * 2.0, "");
+    // The plane stress state (σxx, σyy, 0): its invariants at each of the 3 points.
+    body += &check("T7", "VMIS", "MAX", (sx * sx - sx * sy + sy * sy).sqrt(), "");
+    body += &check("T7", "TRESCA", "MIN", sx, "");
+    body += &check("T7", "TRACE", "SOMM", 3.0 * (sx + sy), "");
     body += &check("T6", "INST", "MAX", 0.0, "");
     let (diag, ok, mess) = run("frames", &body);
     assert_eq!(diag, "OK", "{mess}");
-    assert_eq!(ok, 19, "{mess}");
+    assert_eq!(ok, 25, "{mess}");
 }
 
 #[test]
@@ -126,7 +132,7 @@ fn what_is_not_computed_is_refused_by_name() {
     let (diag, _, mess) = run(
         "refused",
         "T = MACR_LIGN_COUPE(RESULTAT=R, NOM_CHAM='SIGM_ELNO', LIGN_COUPE=_F(NB_POINTS=3, COOR_ORIG=(0.0, 0.5),\n\
-         COOR_EXTR=(2.0, 0.5), INVARIANT='OUI'))\n",
+         COOR_EXTR=(2.0, 0.5), ELEM_PRINCIPAUX='OUI'))\n",
     );
-    assert!(diag.contains("INVARIANT") && diag.contains("not supported"), "{diag}\n{mess}");
+    assert!(diag.contains("ELEM_PRINCIPAUX") && diag.contains("not supported"), "{diag}\n{mess}");
 }
