@@ -10,6 +10,7 @@ pub mod elasticity;
 pub mod field;
 pub mod frame;
 pub mod geometry;
+pub mod locate;
 pub mod physics;
 pub mod plastic;
 pub mod plasticity;

@@ -11,6 +11,7 @@ pub mod generate;
 pub mod gibi;
 pub mod gmsh;
 pub mod ideas;
+pub mod line;
 
 use std::collections::BTreeMap;
 

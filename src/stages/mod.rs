@@ -198,6 +198,7 @@ pub fn stage(name: &str) -> Option<StageFn> {
         "POST_RELEVE_T" => post::post_releve_t,
         "POST_ERREUR" => post::post_erreur,
         "POST_ELEM" => post::post_elem,
+        "MACR_LIGN_COUPE" => post::macr_lign_coupe,
         "MODI_MAILLAGE" => mesh::orient::modi_maillage,
         "MODI_REPERE" => fields::modi_repere,
         "DEFI_FISS_XFEM" => xfem::defi_fiss_xfem,

@@ -1,8 +1,9 @@
 //! Selections shared by the stages: mesh entities of an occurrence (TOUT, GROUP_MA, MAILLE, GROUP_NO,
-//! NOEUD and their SANS_ forms). A MAILLE or NOEUD name no entity bears is read as Code_Aster 2025 numbers
+//! NOEUD and their SANS_ forms) and the steps of a result an occurrence selects. A MAILLE or NOEUD name no entity bears is read as Code_Aster 2025 numbers
 //! its entities (`M<k>`, `N<k>`: `mesh::numbered`).
 
 use crate::catalog::args::Args;
+use crate::concepts::result::{ResultData, Step};
 use crate::concepts::table::{Cell, Table};
 use crate::diag::Result;
 use crate::mesh::Mesh;
@@ -48,21 +49,8 @@ pub fn select_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usiz
             nodes.extend(mesh.cells[c].iter().copied());
         }
     }
-    for g in occ.texts_if_declared("GROUP_NO") {
-        let members = mesh
-            .node_groups
-            .get(&g)
-            .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {mesh_name}")))?;
-        nodes.extend(members.iter().copied());
-    }
-    let names = occ.texts_if_declared("NOEUD");
-    if !names.is_empty() {
-        let index: HashMap<&str, usize> = mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
-        for n in names {
-            let k = index.get(n.as_str()).copied().or_else(|| crate::mesh::numbered(&n, 'N', mesh.coords.len()));
-            nodes.push(k.ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {mesh_name}")))?);
-        }
-    }
+    nodes.extend(group_no_nodes(mesh, occ, mesh_name)?);
+    nodes.extend(noeud_nodes(mesh, occ, mesh_name)?);
     for g in occ.texts_if_declared("SANS_GROUP_NO") {
         let members = mesh
             .node_groups
@@ -73,6 +61,45 @@ pub fn select_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usiz
     nodes.sort_unstable();
     nodes.dedup();
     Ok(nodes)
+}
+
+/// The nodes of NOEUD then of the groups of GROUP_NO, in the order given, each once (less SANS_GROUP_NO):
+/// the list of nodes POST_RELEVE_T follows (`rvgnoe`), whose order makes its curvilinear abscissa.
+pub fn nodes_in_order(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
+    let mut listed = noeud_nodes(mesh, occ, mesh_name)?;
+    listed.extend(group_no_nodes(mesh, occ, mesh_name)?);
+    let kept = select_nodes(mesh, occ, mesh_name)?;
+    let mut seen = std::collections::HashSet::new();
+    Ok(listed.into_iter().filter(|n| kept.binary_search(n).is_ok() && seen.insert(*n)).collect())
+}
+
+/// The nodes of the groups of GROUP_NO, in the order given.
+fn group_no_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
+    let mut nodes = Vec::new();
+    for g in occ.texts_if_declared("GROUP_NO") {
+        let members = mesh
+            .node_groups
+            .get(&g)
+            .ok_or_else(|| occ.err("GROUP_NO", format!("group of nodes '{g}' is not in mesh {mesh_name}")))?;
+        nodes.extend(members.iter().copied());
+    }
+    Ok(nodes)
+}
+
+/// The nodes NOEUD names, in the order given.
+fn noeud_nodes(mesh: &Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
+    let names = occ.texts_if_declared("NOEUD");
+    if names.is_empty() {
+        return Ok(Vec::new());
+    }
+    let index: HashMap<&str, usize> = mesh.node_names.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+    names
+        .iter()
+        .map(|n| {
+            let k = index.get(n.as_str()).copied().or_else(|| crate::mesh::numbered(n, 'N', mesh.coords.len()));
+            k.ok_or_else(|| occ.err("NOEUD", format!("node '{n}' is not in mesh {mesh_name}")))
+        })
+        .collect()
 }
 
 // ------------------------------------------------------------------ table rows (FILTRE)
@@ -189,4 +216,67 @@ pub fn filtered(t: &Table, filters: &[Args], table: &str) -> Result<Vec<usize>> 
         rows = filter_rows(t, &rows, f, table)?;
     }
     Ok(rows)
+}
+
+/// The values of a LIST_ORDRE / LIST_INST concept.
+pub fn list_of(occ: &Args, kw: &str) -> Result<Option<Vec<f64>>> {
+    occ.concept(kw).map(|c| c.reals().map_err(|e| occ.err(kw, e.msg))).transpose()
+}
+
+/// The steps an occurrence selects (TOUT_ORDRE, NUME_ORDRE, LIST_ORDRE,
+/// INST, LIST_INST; all steps by default), in the result's order.
+pub fn selected_steps<'r>(r: &'r ResultData, occ: &Args, name: &str) -> Result<Vec<&'r Step>> {
+    for kw in ["NUME_MODE", "NOEUD_CMP", "NOM_CAS", "ANGLE", "FREQ", "LIST_FREQ"] {
+        if occ.has_if_declared(kw) {
+            return Err(occ.err(kw, format!("{kw} is not supported yet (only NUME_ORDRE and INST select steps)")));
+        }
+    }
+    if r.steps.is_empty() {
+        return Err(occ.err("RESULTAT", format!("result {name} holds no step")));
+    }
+    let mut wanted: Vec<i64> = Vec::new();
+    let orders = if occ.has("NUME_ORDRE") {
+        Some(("NUME_ORDRE", occ.ints("NUME_ORDRE")))
+    } else {
+        list_of(occ, "LIST_ORDRE")?.map(|v| ("LIST_ORDRE", v.iter().map(|&x| x as i64).collect()))
+    };
+    let insts = if occ.has("INST") {
+        Some(("INST", occ.reals("INST")))
+    } else {
+        list_of(occ, "LIST_INST")?.map(|v| ("LIST_INST", v))
+    };
+    if let Some((kw, orders)) = orders {
+        for n in orders {
+            if r.by_order(n).is_none() {
+                return Err(occ.err(kw, format!("result {name} has no order number {n}")));
+            }
+            wanted.push(n);
+        }
+    } else if let Some((kw, insts)) = insts {
+        let crit = occ.text("CRITERE").unwrap_or("RELATIF");
+        let prec = occ.real("PRECISION").unwrap_or(1.0e-6);
+        for t in insts {
+            let tol = if crit == "ABSOLU" { prec } else { prec * t.abs() };
+            let found: Vec<&Step> = r.steps.iter().filter(|s| (s.inst - t).abs() <= tol).collect();
+            match found.as_slice() {
+                [one] => wanted.push(one.nume_ordre),
+                [] => {
+                    return Err(occ.err(
+                        kw,
+                        format!("result {name} has no step at time {t} (CRITERE='{crit}', PRECISION={prec})"),
+                    ))
+                }
+                many => {
+                    let n: Vec<String> = many.iter().map(|s| s.nume_ordre.to_string()).collect();
+                    return Err(occ.err(
+                        kw,
+                        format!("time {t} matches several steps of result {name} (order numbers {})", n.join(", ")),
+                    ));
+                }
+            }
+        }
+    } else {
+        return Ok(r.steps.iter().collect());
+    }
+    Ok(r.steps.iter().filter(|s| wanted.contains(&s.nume_ordre)).collect())
 }

@@ -1,5 +1,5 @@
-//! Post-processing: values of results and fields extracted to tables (POST_RELEVE_T), error norms of a
-//! field against reference formulas (POST_ERREUR).
+//! Post-processing: values of results and fields extracted to tables (POST_RELEVE_T) or along lines
+//! (MACR_LIGN_COUPE), error norms of a field against reference formulas (POST_ERREUR).
 
 use super::common::*;
 use crate::catalog::schema::*;
@@ -177,6 +177,145 @@ fn post_erreur() -> Command {
     ])
 }
 
+// ------------------------------------------------------------------ MACR_LIGN_COUPE
+
+/// Code_Aster's `macr_lign_coupe.py`: values of a result or a field along lines (segments, arcs, groups of
+/// nodes or of segment cells) into a table.
+fn macr_lign_coupe() -> Command {
+    use ConceptKind::*;
+    let orders = with(
+        kws![
+            simp("NUME_ORDRE").i().many(),
+            simp("NUME_MODE").i().many(),
+            simp("LIST_ORDRE").co(&[ListIs]),
+            simp("INST").r().many(),
+            simp("LIST_INST").co(&[ListR8]),
+        ],
+        vec![bloc(or(vec![present("INST"), present("LIST_INST")]), crit_prec()).into()],
+    );
+    let ther = &[
+        "TEMP",
+        "HHO_TEMP",
+        "FLUX_ELGA",
+        "FLUX_ELNO",
+        "FLUX_NOEU",
+        "META_ELNO",
+        "META_NOEU",
+        "DURT_ELNO",
+        "DURT_NOEU",
+        "HYDR_ELNO",
+        "HYDR_NOEU",
+        "DETE_ELNO",
+        "DETE_NOEU",
+        "SOUR_ELGA",
+        "COMPORTHER",
+        "ERTH_ELEM",
+        "ERTH_ELNO",
+        "ERTH_NOEU",
+    ];
+    let line = kws![
+        simp("INTITULE").txt(),
+        simp("TYPE").txt().d("SEGMENT").one_of(&["GROUP_NO", "SEGMENT", "ARC", "GROUP_MA"]),
+        simp("REPERE").txt().d("GLOBAL").one_of(&["GLOBAL", "LOCAL", "POLAIRE", "UTILISATEUR", "CYLINDRIQUE"]),
+        simp("OPERATION").txt().d("EXTRACTION").one_of(&["EXTRACTION", "MOYENNE"]),
+        simp("NOM_CMP").txt().many(),
+        simp("INVARIANT").txt().one_of(&["OUI"]),
+        simp("ELEM_PRINCIPAUX").txt().one_of(&["OUI"]),
+        simp("TRAC_NOR").txt().one_of(&["OUI"]),
+        simp("TRAC_DIR").txt().one_of(&["OUI"]),
+        simp("DIRECTION").r().many(),
+        bloc(
+            or(vec![eq("TYPE", "GROUP_NO"), eq("TYPE", "GROUP_MA")]),
+            kws![
+                simp("RESULTANTE").txt().many().one_of(&["DX", "DY", "DZ", "NXX", "NYY", "NXY"]),
+                simp("MOMENT").txt().many().one_of(&["DRX", "DRY", "DRZ", "MXX", "MYY", "MXY"]),
+                simp("POINT").r().many(),
+            ]
+        )
+        .rules(vec![present_present("MOMENT", &["RESULTANTE"])]),
+        bloc(eq("REPERE", "LOCAL"), kws![simp("VECT_Y").r().min(2).max(3)]),
+        bloc(eq("REPERE", "UTILISATEUR"), kws![simp("ANGL_NAUT").r().o().min(3).max(3)]),
+        bloc(eq("TYPE", "GROUP_NO"), kws![simp("GROUP_NO").txt().o()]),
+        bloc(
+            eq("TYPE", "GROUP_MA"),
+            kws![
+                simp("GROUP_MA").txt().o(),
+                simp("MAILLAGE").co(&[Maillage]).o(),
+                simp("GROUP_NO_ORIG").txt(),
+                simp("GROUP_NO_EXTR").txt(),
+                simp("VECT_ORIE").r().max(3),
+            ]
+        ),
+        bloc(
+            eq("TYPE", "SEGMENT"),
+            kws![
+                simp("NB_POINTS").i().o().val_min(2.0),
+                simp("COOR_ORIG").r().min(2).max(3),
+                simp("COOR_EXTR").r().min(2).max(3),
+                simp("GROUP_NO_ORIG").txt(),
+                simp("GROUP_NO_EXTR").txt(),
+            ]
+        )
+        .rules(vec![un_parmi(&["COOR_ORIG", "GROUP_NO_ORIG"]), un_parmi(&["COOR_EXTR", "GROUP_NO_EXTR"])]),
+        bloc(
+            eq("TYPE", "ARC"),
+            kws![
+                simp("NB_POINTS").i().o().val_min(2.0),
+                simp("COOR_ORIG").r().o().min(2).max(3),
+                simp("CENTRE").r().o().min(2).max(3),
+                simp("ANGLE").r().o(),
+                simp("DNOR").r().min(2).max(3),
+            ]
+        ),
+        bloc(
+            and(vec![eq("REPERE", "CYLINDRIQUE"), Cond::Not(Box::new(eq("TYPE", "ARC")))]),
+            kws![simp("ORIGINE").r().min(2).max(3), simp("AXE_Z").r().min(3).max(3)]
+        ),
+        simp("DISTANCE_MAX").r().d(0.0),
+        simp("DISTANCE_ALARME").r(),
+    ];
+    Command::new("MACR_LIGN_COUPE", "Extract results along lines into a table.")
+        .produces(ConceptKind::Table)
+        .rules(vec![un_parmi(&["RESULTAT", "CHAM_GD"])])
+        .kw(kws![
+            simp("RESULTAT").co(&[EvolElas, EvolNoli, EvolTher, EvolSech]),
+            simp("CHAM_GD").co(CHAM_GD),
+            bloc(present("RESULTAT"), orders).rules(vec![exclus(&[
+                "NUME_ORDRE",
+                "NUME_MODE",
+                "LIST_ORDRE",
+                "INST",
+                "LIST_INST"
+            ])]),
+            bloc(Cond::Type("RESULTAT", &[EvolElas, EvolNoli]), kws![simp("NOM_CHAM").txt().d("SIGM_NOEU")]),
+            bloc(Cond::Type("RESULTAT", &[EvolTher]), kws![simp("NOM_CHAM").txt().d("TEMP").one_of(ther)]),
+            bloc(
+                Cond::Type("RESULTAT", &[EvolSech]),
+                kws![simp("NOM_CHAM").txt().d("SECH").one_of(&[
+                    "SECH",
+                    "FLUX_ELGA",
+                    "FLUX_ELNO",
+                    "FLUX_NOEU",
+                    "COMPORTHER"
+                ])]
+            ),
+            bloc(present("CHAM_GD"), kws![simp("NOM_CHAM").txt()]),
+            simp("UNITE_MAILLAGE").i(),
+            simp("MODELE").co(&[Modele]),
+            fact("VIS_A_VIS", kws![simp("GROUP_MA_1").txt(), simp("MAILLE_1").txt().many()])
+                .many()
+                .rules(vec![exclus(&["GROUP_MA_1", "MAILLE_1"])]),
+            fact("LIGN_COUPE", line).o().many().rules(vec![
+                exclus(&["NOM_CMP", "INVARIANT", "ELEM_PRINCIPAUX", "RESULTANTE"]),
+                present_present("TRAC_DIR", &["DIRECTION"]),
+                exclus(&["TRAC_DIR", "TRAC_NOR"]),
+                present_present("TRAC_DIR", &["NOM_CMP"]),
+                present_present("TRAC_NOR", &["NOM_CMP"]),
+                ensemble(&["MOMENT", "POINT"]),
+            ]),
+        ])
+}
+
 pub fn commands() -> Vec<Command> {
-    vec![post_releve_t(), post_erreur(), post_elem()]
+    vec![post_releve_t(), post_erreur(), post_elem(), macr_lign_coupe()]
 }

@@ -733,8 +733,7 @@ fn group_first_node(w: &mut Work, occ: &Args, kw: &str) -> Result<Option<usize>>
 }
 
 /// OPTION='NOEUD_ORDO' (`cgnoor` + `ornofd`): the nodes of a line of SEG2 /
-/// SEG3 cells, ordered from the origin; SEG3 middle nodes between their
-/// vertices.
+/// SEG3 cells, ordered from the origin (`mesh::line`).
 fn ordered_line_nodes(w: &mut Work, occ: &Args) -> Result<Vec<usize>> {
     let mut cells: Vec<usize> = Vec::new();
     let mut seen = HashSet::new();
@@ -745,98 +744,13 @@ fn ordered_line_nodes(w: &mut Work, occ: &Args) -> Result<Vec<usize>> {
             }
         }
     }
-    if cells.is_empty() {
-        return Err(occ.err("GROUP_MA", "no cells given"));
-    }
-    let t0 = w.mesh.cell_types[cells[0]];
-    for &c in &cells {
-        let t = w.mesh.cell_types[c];
-        if !matches!(t, CellType::Seg2 | CellType::Seg3) {
-            return Err(occ.err("GROUP_MA", format!("cell {} is a {}, not a segment", w.mesh.cell_names[c], t.name())));
-        }
-        if t != t0 {
-            return Err(occ.err("GROUP_MA", "the segments must all be of the same type (SEG2 or SEG3)"));
-        }
-    }
-    let ends: Vec<(usize, usize)> = cells.iter().map(|&c| (w.mesh.cells[c][0], w.mesh.cells[c][1])).collect();
-    let mut degree: HashMap<usize, usize> = HashMap::new();
-    for &(a, b) in &ends {
-        *degree.entry(a).or_default() += 1;
-        *degree.entry(b).or_default() += 1;
-    }
-    if degree.values().filter(|&&d| d == 1).count() > 2 || degree.values().any(|&d| d > 2) {
-        return Err(occ.err("GROUP_MA", "the cells do not form one line without branches"));
-    }
-    let orig = group_first_node(w, occ, "GROUP_NO_ORIG")?;
-    let extr = group_first_node(w, occ, "GROUP_NO_EXTR")?;
-    let closed = orig.is_some() && orig == extr;
-    for (kw, n) in [("GROUP_NO_EXTR", extr), ("GROUP_NO_ORIG", orig)] {
-        if let Some(n) = n {
-            let name = &w.mesh.node_names[n];
-            match degree.get(&n) {
-                None => return Err(occ.err(kw, format!("node {name} is not on the line"))),
-                Some(&d) if d != 1 && !closed => {
-                    return Err(occ.err(kw, format!("node {name} is not an end of the line")))
-                }
-                _ => {}
-            }
-        }
-    }
-    let start = match orig {
-        Some(n) => n,
-        None => {
-            // The first end met (origin ends of all cells, then the others) used once.
-            let order: Vec<usize> = ends.iter().map(|e| e.0).chain(ends.iter().map(|e| e.1)).collect();
-            match order.iter().find(|n| degree[n] == 1) {
-                Some(&n) => n,
-                None if occ.text("ORIGINE") == Some("SANS") => order[0],
-                None => return Err(occ.err("GROUP_MA", "the line is closed: give GROUP_NO_ORIG or ORIGINE='SANS'")),
-            }
-        }
+    let how = crate::mesh::line::LineEnds {
+        orig: group_first_node(w, occ, "GROUP_NO_ORIG")?,
+        extr: group_first_node(w, occ, "GROUP_NO_EXTR")?,
+        no_origin: occ.text("ORIGINE") == Some("SANS"),
+        vect_orie: occ.reals("VECT_ORIE"),
     };
-    // Walk the chain.
-    let mut used = vec![false; cells.len()];
-    let mut out = vec![start];
-    let mut cur = start;
-    for _ in 0..cells.len() {
-        let next = (0..cells.len()).find(|&i| !used[i] && (ends[i].0 == cur || ends[i].1 == cur));
-        let Some(i) = next else {
-            return Err(
-                occ.err("GROUP_MA", format!("the cells do not form one line from node {}", w.mesh.node_names[start]))
-            );
-        };
-        used[i] = true;
-        if t0 == CellType::Seg3 {
-            out.push(w.mesh.cells[cells[i]][2]);
-        }
-        cur = if ends[i].0 == cur { ends[i].1 } else { ends[i].0 };
-        out.push(cur);
-    }
-    if let Some(e) = extr {
-        if cur != e {
-            return Err(occ.err(
-                "GROUP_NO_EXTR",
-                format!(
-                    "the line from {} ends at {}, not at {}",
-                    w.mesh.node_names[start], w.mesh.node_names[cur], w.mesh.node_names[e]
-                ),
-            ));
-        }
-    }
-    // VECT_ORIE orients a closed line.
-    let v = occ.reals("VECT_ORIE");
-    if v.iter().any(|x| *x != 0.0) && out.len() >= 3 && out[0] == out[out.len() - 1] {
-        let dir = |a: usize, b: usize| -> f64 {
-            let d = Vector3::from(w.mesh.coords[b]) - Vector3::from(w.mesh.coords[a]);
-            let orie = Vector3::from_fn(|k, _| v.get(k).copied().unwrap_or(0.0));
-            d.dot(&orie) / d.norm()
-        };
-        let nb = out.len();
-        if dir(out[nb - 1], out[nb - 2]) > dir(out[0], out[1]) {
-            out.reverse();
-        }
-    }
-    Ok(out)
+    crate::mesh::line::ordered_nodes(&w.mesh, &cells, &how).map_err(|e| occ.err(e.keyword, e.message))
 }
 
 /// The INFO table of created groups, as in Code_Aster's message file.

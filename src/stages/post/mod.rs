@@ -1,10 +1,13 @@
-//! POST_RELEVE_T (EXTRACTION): values of results (RESULTAT) and of nodal fields (CHAM_GD) as a table; POST_ERREUR (`erreur`): error
-//! norms of a field against reference formulas.
+//! POST_RELEVE_T (EXTRACTION): values of results (RESULTAT) and of nodal fields (CHAM_GD) as a table, or
+//! their normal trace on the line of the nodes (TRAC_NOR, 2D); POST_ERREUR (`erreur`): error
+//! norms of a field against reference formulas; MACR_LIGN_COUPE (`lign_coupe`): values along lines.
 
 mod elem;
 mod erreur;
 pub use elem::post_elem;
+mod lign_coupe;
 pub use erreur::post_erreur;
+pub use lign_coupe::macr_lign_coupe;
 
 use crate::catalog::args::Args;
 use crate::concepts::result::{Field, Step};
@@ -16,10 +19,14 @@ use crate::concepts::table::{Cell, ColType, Table};
 // ------------------------------------------------------------------ POST_RELEVE_T
 
 /// The node label and coordinates columns of a row (Code_Aster shows node numbers for meshes whose
-/// file gave no node names).
-fn node_columns(mesh: &crate::mesh::Mesh, node: usize) -> Vec<(String, Cell)> {
+/// file gave no node names), with the curvilinear abscissa of the node along the list of nodes when it
+/// is known.
+fn node_columns(mesh: &crate::mesh::Mesh, node: usize, absc: Option<f64>) -> Vec<(String, Cell)> {
     let label = if mesh.named_nodes { mesh.node_names[node].clone() } else { (node + 1).to_string() };
     let mut row = vec![("NOEUD".to_string(), Cell::Text(label))];
+    if let Some(s) = absc {
+        row.push(("ABSC_CURV".to_string(), Cell::Real(s)));
+    }
     for (d, name) in ["COOR_X", "COOR_Y", "COOR_Z"].iter().enumerate().take(mesh.dim.max(2)) {
         row.push((name.to_string(), Cell::Real(mesh.coords[node][d])));
     }
@@ -56,7 +63,7 @@ fn field_rows(occ: &Args, intitule: &str, fc: &crate::concepts::ConceptRef) -> R
             ("INTITULE".to_string(), Cell::Text(intitule.to_string())),
             ("CHAM_GD".to_string(), Cell::Text(fc.label())),
         ];
-        row.extend(node_columns(&mesh, node));
+        row.extend(node_columns(&mesh, node, None));
         for (c, &k) in comps.iter().zip(&ks) {
             let v = values[node * n + k];
             row.push((c.clone(), if v.is_nan() { Cell::Empty } else { Cell::Real(v) }));
@@ -89,12 +96,12 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
             "LIST_MODE",
             "NOEUD_CMP",
             "NOM_CAS",
-            "TRAC_NOR",
             "TRAC_DIR",
             "DIRECTION",
         ])?;
         let intitule = occ.req_text("INTITULE")?.to_string();
         if let Some(fc) = occ.concept("CHAM_GD") {
+            occ.refuse(&["TRAC_NOR"])?;
             rows.extend(field_rows(occ, &intitule, &fc)?);
             continue;
         }
@@ -126,7 +133,32 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         } else {
             r.steps.iter().collect()
         };
-        let nodes = crate::stages::select::select_nodes(&mesh, occ, &mesh_name)?;
+        // Nodes named alone (NOEUD, GROUP_NO) are taken in the order given; with cells, in the mesh's.
+        let nodes = if occ.has("GROUP_MA") || occ.has("MAILLE") || occ.has("TOUT") {
+            crate::stages::select::select_nodes(&mesh, occ, &mesh_name)?
+        } else {
+            crate::stages::select::nodes_in_order(&mesh, occ, &mesh_name)?
+        };
+        // TRAC_NOR (2D): the normal trace on the line the nodes form, in their order (`rvrlln`).
+        let normals = if occ.text("TRAC_NOR") == Some("OUI") {
+            if mesh.dim != 2 {
+                return Err(occ.err("TRAC_NOR", "TRAC_NOR on nodes of a 3D mesh is not supported yet"));
+            }
+            let pts: Vec<[f64; 3]> = nodes.iter().map(|&n| mesh.coords[n]).collect();
+            Some(lign_coupe::line_normals(&pts))
+        } else {
+            None
+        };
+        // The curvilinear abscissa along the nodes in their order (`rvabsc`).
+        let mut absc = std::collections::HashMap::new();
+        let mut s_acc = 0.0;
+        for (j, &node) in nodes.iter().enumerate() {
+            if j > 0 {
+                let (a, b) = (mesh.coords[nodes[j - 1]], mesh.coords[node]);
+                s_acc += ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt();
+            }
+            absc.entry(node).or_insert(s_acc);
+        }
         let cells_sel = if occ.has("GROUP_MA") || occ.has("MAILLE") || occ.has("TOUT") {
             Some(crate::stages::select::select_cells(&mesh, occ, &mesh_name)?)
         } else {
@@ -156,16 +188,21 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 if let Some(c) = cell {
                     row.push(("MAILLE".to_string(), Cell::Text(mesh.cell_names[c].clone())));
                 }
-                row.extend(node_columns(&mesh, node));
+                row.extend(node_columns(&mesh, node, absc.get(&node).copied().filter(|_| cell.is_none())));
                 row
             };
             match field {
                 Field::Node { values, .. } => {
-                    for &node in &nodes {
+                    for (j, &node) in nodes.iter().enumerate() {
                         let mut row = head(node, None);
-                        for (c, &k) in comps.iter().zip(&ks) {
-                            let v = values[node * n + k];
-                            row.push((c.clone(), if v.is_nan() { Cell::Empty } else { Cell::Real(v) }));
+                        if let Some(normals) = &normals {
+                            let v = &values[node * n..(node + 1) * n];
+                            row.extend(lign_coupe::normal_trace(&cham, field.components(), Some(v), &ks, normals[j]));
+                        } else {
+                            for (c, &k) in comps.iter().zip(&ks) {
+                                let v = values[node * n + k];
+                                row.push((c.clone(), if v.is_nan() { Cell::Empty } else { Cell::Real(v) }));
+                            }
                         }
                         rows.push(row);
                     }
@@ -188,6 +225,9 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                         }
                     }
                     if occ.text("MOYE_NOEUD") == Some("NON") {
+                        if normals.is_some() {
+                            return Err(occ.err("TRAC_NOR", "TRAC_NOR with MOYE_NOEUD='NON' is not supported yet"));
+                        }
                         // One row per cell and node.
                         for (node, c, v) in at_nodes {
                             let mut row = head(node, Some(c));
@@ -199,16 +239,28 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                     } else {
                         // MOYE_NOEUD='OUI' (the default): the values of the cells around a node averaged,
                         // one row per node, in the order of the node selection.
-                        for &node in &nodes {
+                        for (j, &node) in nodes.iter().enumerate() {
                             let around: Vec<&[f64]> =
                                 at_nodes.iter().filter(|(m, _, _)| *m == node).map(|(_, _, v)| *v).collect();
                             if around.is_empty() {
                                 continue;
                             }
                             let mut row = head(node, None);
-                            for (cn, &k) in comps.iter().zip(&ks) {
-                                let mean = around.iter().map(|v| v[k]).sum::<f64>() / around.len() as f64;
-                                row.push((cn.clone(), Cell::Real(mean)));
+                            let mean: Vec<f64> = (0..n)
+                                .map(|k| around.iter().map(|v| v[k]).sum::<f64>() / around.len() as f64)
+                                .collect();
+                            if let Some(normals) = &normals {
+                                row.extend(lign_coupe::normal_trace(
+                                    &cham,
+                                    field.components(),
+                                    Some(&mean),
+                                    &ks,
+                                    normals[j],
+                                ));
+                            } else {
+                                for (cn, &k) in comps.iter().zip(&ks) {
+                                    row.push((cn.clone(), Cell::Real(mean[k])));
+                                }
                             }
                             rows.push(row);
                         }
