@@ -11,6 +11,7 @@
 
 use super::law::{update, Derivatives, IntegrationFailure, PointState};
 use super::material::Biot;
+use super::thermal::{self, ThermalMat};
 use crate::fem::elasticity::{vertex_type, IsoElastic, Modelisation};
 use crate::fem::quadrature::{aster_rule, QuadratureRule};
 use crate::fem::reference::shape_and_deriv;
@@ -101,6 +102,8 @@ pub struct CellPoints {
     pub first: Vec<usize>,
     /// The local unknown of each pressure function (a vertex's, or an enriched copy of it).
     pub pfirst: Vec<usize>,
+    /// THM: the local unknown of the temperature of each vertex (empty in HM).
+    pub tfirst: Vec<usize>,
     pub ndof: usize,
 }
 
@@ -280,7 +283,7 @@ impl CellPoints {
             }
             ndof += dim + usize::from(a < nv);
         }
-        Ok(CellPoints { kin, variant, cell: t, family, points, first, pfirst, ndof })
+        Ok(CellPoints { kin, variant, cell: t, family, points, first, pfirst, tfirst: Vec::new(), ndof })
     }
 
     /// The points of an enriched cell (X-FEM): `points` (reference coordinates, weight × |det J| already
@@ -330,8 +333,49 @@ impl CellPoints {
             points: out,
             first: ucols.iter().map(|c| c.first).collect(),
             pfirst: pcols.iter().map(|c| c.first).collect(),
+            tfirst: Vec::new(),
             ndof,
         })
+    }
+
+    /// The THM layout: node by node `DX DY [DZ]`, then `PRE1 TEMP` on a vertex (the temperature is
+    /// interpolated as the pressure, with the vertex functions).
+    pub fn with_temperature(mut self) -> CellPoints {
+        let dim = self.kin.dim();
+        let nv = self.pfirst.len();
+        let (mut first, mut pfirst, mut tfirst, mut ndof) = (Vec::new(), Vec::new(), Vec::new(), 0);
+        for a in 0..self.first.len() {
+            first.push(ndof);
+            ndof += dim;
+            if a < nv {
+                pfirst.push(ndof);
+                tfirst.push(ndof + 1);
+                ndof += 2;
+            }
+        }
+        self.first = first;
+        self.pfirst = pfirst;
+        self.tfirst = tfirst;
+        self.ndof = ndof;
+        self
+    }
+
+    /// The local index of the temperature of vertex `a` (THM).
+    pub fn t(&self, a: usize) -> usize {
+        self.tfirst[a]
+    }
+
+    /// The temperature and its gradient at a point (THM; zero in HM).
+    fn temperature_at(&self, pt: &Point, ue: &[f64]) -> (f64, [f64; 3]) {
+        let mut t = 0.0;
+        let mut gt = [0.0; 3];
+        for (v, &d) in self.tfirst.iter().enumerate() {
+            t += pt.nh[v] * ue[d];
+            for i in 0..3 {
+                gt[i] += pt.dnh[v][i] * ue[d];
+            }
+        }
+        (t, gt)
     }
 
     /// The local index of displacement component `i` of node `a`.
@@ -400,7 +444,8 @@ impl CellPoints {
             .iter()
             .map(|pt| {
                 let (eps, p, _) = self.kinematics_at(pt, ue);
-                PointState { eps, p, ..PointState::initial(mat) }
+                let temp = self.temperature_at(pt, ue).0;
+                PointState { eps, p, temp, ..PointState::initial(mat) }
             })
             .collect()
     }
@@ -427,10 +472,28 @@ pub struct ElementOutput {
 
 /// The element's internal forces and tangent for the local unknowns `ue` at the end of the step,
 /// from the states `prev` of its points at the start.
-#[allow(clippy::needless_range_loop)]
 pub fn element(
     cp: &CellPoints,
     mat: &Biot,
+    ue: &[f64],
+    prev: &[PointState],
+    step: &StepData,
+) -> Result<ElementOutput, IntegrationFailure> {
+    element_with(cp, mat, None, ue, prev, step)
+}
+
+/// The element of [`element`], THM when `th` gives the thermal parameters (the layout of
+/// [`CellPoints::with_temperature`]): the energy rows are Code_Aster's (`thmComputeResidual`),
+///
+/// - temperature rows: `∫ N̂ [Δt w̄·g − ΔM h̄ − ΔQ'] + Δt ∇N̂ · (θ (h w + q)⁺ + (1 − θ) (h w + q)⁻)`,
+///
+/// x̄ = θx⁺ + (1 − θ)x⁻, the storage part (`ΔM h̄ + ΔQ'`) where the variant integrates the mass
+/// storage, the rest where it integrates the flux.
+#[allow(clippy::needless_range_loop)]
+pub fn element_with(
+    cp: &CellPoints,
+    mat: &Biot,
+    th: Option<&ThermalMat>,
     ue: &[f64],
     prev: &[PointState],
     step: &StepData,
@@ -445,7 +508,18 @@ pub fn element(
     let mut states = Vec::with_capacity(cp.points.len());
     for (pt, prev) in cp.points.iter().zip(prev) {
         let (eps, p, gp) = cp.kinematics_at(pt, ue);
-        let (s, der) = update(mat, &d, prev, &eps, p, &gp, &g)?;
+        let (s, der, tder) = match th {
+            None => {
+                let (s, der) = update(mat, &d, prev, &eps, p, &gp, &g)?;
+                (s, der, None)
+            }
+            Some(th) => {
+                let (t, gt) = cp.temperature_at(pt, ue);
+                let axis = cp.kin == Kinematics::Axis;
+                let (s, der, td) = thermal::update(mat, th, &d, prev, &eps, p, &gp, t, &gt, &g, axis)?;
+                (s, der, Some(td))
+            }
+        };
         let Derivatives { dsigp_dp, dm_depsv, dm_dp, dw_dgradp, dw_dp } = der;
         let w = pt.w;
         let bs: Vec<[[f64; 3]; 6]> = (0..nno).map(|a| cp.b(pt, a)).collect();
@@ -512,6 +586,88 @@ pub fn element(
                     let gj = pt.dnh[jv];
                     let v: f64 = (0..dim).map(|x| gi[x] * (dw_dgradp * gj[x] + dw_dp[x] * pt.nh[jv])).sum();
                     k[r * nd + cp.p(jv)] += w * dt * th * v;
+                }
+            }
+        }
+        if let Some(td) = tder {
+            let (th, dt) = (step.theta, step.dt);
+            let nt = cp.tfirst.len();
+            if pt.role.mech {
+                // K_uT: Bᵀ ∂σ'/∂T N̂ − N g ∂M/∂T N̂.
+                for a in 0..nno {
+                    for i in 0..dim {
+                        let r = cp.u(a, i);
+                        let v = trace(a, i) * td.dsig_dt - pt.n[a] * g[i] * td.dm_dt;
+                        for jv in 0..nt {
+                            k[r * nd + cp.t(jv)] += w * v * pt.nh[jv];
+                        }
+                    }
+                }
+            }
+            let dm = s.m - prev.m;
+            let hbar = th * s.h + (1.0 - th) * prev.h;
+            if pt.role.storage {
+                for iv in 0..nv {
+                    let r = cp.p(iv);
+                    for jv in 0..nt {
+                        k[r * nd + cp.t(jv)] -= w * pt.nh[iv] * td.dm_dt * pt.nh[jv];
+                    }
+                }
+                for iv in 0..nt {
+                    let r = cp.t(iv);
+                    let wi = w * pt.nh[iv];
+                    fint[r] -= wi * (dm * hbar + s.qp - prev.qp);
+                    for b in 0..nno {
+                        for j in 0..dim {
+                            k[r * nd + cp.u(b, j)] -= wi * (hbar * dm_depsv + td.dq_deps) * trace(b, j);
+                        }
+                    }
+                    for jv in 0..nt {
+                        let kp = hbar * dm_dp + th * dm * td.dh_dp + td.dq_dp;
+                        let kt = hbar * td.dm_dt + th * dm * td.dh_dt + td.dq_dt;
+                        k[r * nd + cp.p(jv)] -= wi * kp * pt.nh[jv];
+                        k[r * nd + cp.t(jv)] -= wi * kt * pt.nh[jv];
+                    }
+                }
+            }
+            if pt.role.flux {
+                let wbar: [f64; 3] = std::array::from_fn(|i| th * s.w[i] + (1.0 - th) * prev.w[i]);
+                // The heat carried by the liquid and conducted: h w + q at both ends of the step.
+                let flow: [f64; 3] = std::array::from_fn(|i| {
+                    th * (s.h * s.w[i] + s.qt[i]) + (1.0 - th) * (prev.h * prev.w[i] + prev.qt[i])
+                });
+                for iv in 0..nv {
+                    let r = cp.p(iv);
+                    let gi = pt.dnh[iv];
+                    let v: f64 = (0..dim).map(|x| gi[x] * td.dw_dt[x]).sum();
+                    for jv in 0..nt {
+                        k[r * nd + cp.t(jv)] += w * dt * th * v * pt.nh[jv];
+                    }
+                }
+                let wg: f64 = (0..dim).map(|x| wbar[x] * g[x]).sum();
+                for iv in 0..nt {
+                    let r = cp.t(iv);
+                    let gi = pt.dnh[iv];
+                    fint[r] += w * dt * (pt.nh[iv] * wg + (0..dim).map(|x| gi[x] * flow[x]).sum::<f64>());
+                    for jv in 0..nt {
+                        let gj = pt.dnh[jv];
+                        let (mut kp, mut kt) = (0.0, 0.0);
+                        for x in 0..dim {
+                            let dwp = dw_dgradp * gj[x] + dw_dp[x] * pt.nh[jv];
+                            let dwt = td.dw_dt[x] * pt.nh[jv];
+                            // The weight of the flux along gravity, then the convected and conducted heat.
+                            kp += pt.nh[iv] * g[x] * dwp;
+                            kt += pt.nh[iv] * g[x] * dwt;
+                            kp += gi[x] * (s.h * dwp + td.dh_dp * pt.nh[jv] * s.w[x]);
+                            kt += gi[x]
+                                * (s.h * dwt
+                                    + td.dh_dt * pt.nh[jv] * s.w[x]
+                                    + td.dqt_dgradt * gj[x]
+                                    + td.dqt_dt[x] * pt.nh[jv]);
+                        }
+                        k[r * nd + cp.p(jv)] += w * dt * th * kp;
+                        k[r * nd + cp.t(jv)] += w * dt * th * kt;
+                    }
                 }
             }
         }

@@ -21,6 +21,12 @@ pub struct PointState {
     pub rho: f64,
     pub eps: [f64; 6],
     pub p: f64,
+    /// THM: the temperature of the point (TEMP, from THM_INIT TEMP), the liquid's enthalpy `ENT11`, the
+    /// non-convected heat `QPRIM` and the heat flux `FHTX..Z` (zero in HM).
+    pub temp: f64,
+    pub h: f64,
+    pub qp: f64,
+    pub qt: [f64; 3],
 }
 
 impl PointState {
@@ -35,6 +41,10 @@ impl PointState {
             rho: m.rho_l,
             eps: [0.0; 6],
             p: 0.0,
+            temp: 0.0,
+            h: 0.0,
+            qp: 0.0,
+            qt: [0.0; 3],
         }
     }
 
@@ -119,7 +129,7 @@ pub fn update(
         dw_dgradp: -rho * kappa,
         dw_dp: std::array::from_fn(|i| kappa * drho_dp * (-grad_p[i] + 2.0 * rho * g[i])),
     };
-    Ok((PointState { sig, sigp, m, w, phi, rho, eps: *eps, p }, der))
+    Ok((PointState { sig, sigp, m, w, phi, rho, eps: *eps, p, ..*prev }, der))
 }
 
 #[cfg(test)]
