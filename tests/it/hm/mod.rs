@@ -6,6 +6,7 @@ mod elimination;
 mod newton;
 mod solver;
 mod terzaghi_study;
+mod thermal;
 
 use aster::med;
 use aster::mesh::Mesh;
