@@ -1,7 +1,8 @@
 //! The thermal part of saturated THM (`KIT_THM` = `ELAS`, `LIQU_SATU`, `HYDR_UTIL` on the `*_THM`,
 //! `*_THMD`, `*_THMS` modelisations) at one integration point, as Code_Aster computes it
 //! (`thmCpl001`, `calor`, `enteau`, `capaca`, `dileau`, `dilata`, `virhol`, `viporo`, `thmFlh001`,
-//! `calcft`, `thmMecaElas` in its sources; `../shared/docs/thm-saturated-formulation.md`).
+//! `calcft`, `thmMecaElas`, `thmComputeResidual` in its sources; the HM part is the one of
+//! `../shared/docs/hm-coupled-formulation.md`).
 //!
 //! `TEMP` is measured from `THM_INIT TEMP` (T₀): the absolute temperature of a point is `TEMP + T₀`,
 //! which must stay positive. Beyond the saturated HM update of [`super::law`]:
