@@ -371,8 +371,8 @@ impl CellPoints {
         let mut gt = [0.0; 3];
         for (v, &d) in self.tfirst.iter().enumerate() {
             t += pt.nh[v] * ue[d];
-            for i in 0..3 {
-                gt[i] += pt.dnh[v][i] * ue[d];
+            for (g, dn) in gt.iter_mut().zip(&pt.dnh[v]) {
+                *g += dn * ue[d];
             }
         }
         (t, gt)

@@ -263,15 +263,11 @@ fn forc_noda(
                 ps.sig = std::array::from_fn(|i| x[i]);
                 ps.sigp = std::array::from_fn(|i| x[6 + i]);
                 ps.m = x[12];
-                for i in 0..dim {
-                    ps.w[i] = x[13 + i];
-                }
+                ps.w[..dim].copy_from_slice(&x[13..13 + dim]);
                 if thm && x.len() >= 15 + 2 * dim {
                     ps.h = x[13 + dim];
                     ps.qp = x[14 + dim];
-                    for i in 0..dim {
-                        ps.qt[i] = x[15 + dim + i];
-                    }
+                    ps.qt[..dim].copy_from_slice(&x[15 + dim..15 + 2 * dim]);
                 }
                 ps
             })
