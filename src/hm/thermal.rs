@@ -202,15 +202,7 @@ pub fn update(
     let work = mdal * (deps[0] + deps[1] + hoop * deps[2]) * tmid;
     let qp = prev.qp + work - 3.0 * alp11 * tmid * dp + coeps * dtemp;
     let qt: [f64; 3] = std::array::from_fn(|i| -c.lambda * grad_t[i]);
-    let dphi_dp = (b - phi) * inv_ks;
-    let drho_dp = rho * mat.inv_kw;
-    let der = Derivatives {
-        dsigp_dp: -b,
-        dm_depsv: rho * b,
-        dm_dp: rho * (phi * mat.inv_kw + dphi_dp),
-        dw_dgradp: -rho * kappa,
-        dw_dp: std::array::from_fn(|i| kappa * drho_dp * (-grad_p[i] + 2.0 * rho * g[i])),
-    };
+    let der = super::law::derivatives(mat, phi, rho, kappa, grad_p, g);
     // ∂w/∂T: the density (−3α_l ρ) in both factors ρ, and the viscosity (−μ'/μ²).
     let drho_dt = -3.0 * c.alpha_l * rho;
     let dkappa_dt = -mat.perm * c.dvisc / (c.visc * c.visc);

@@ -1,16 +1,9 @@
 //! Saturated THM (KIT_THM) on scenes of our own: a temperature prescribed everywhere is eliminated, and
 //! the scene then solves exactly its HM twin; a uniformly heated drained block expands freely.
 
-use super::run;
+use super::{run, solved};
 use aster::mesh::generate::box_mesh;
 use aster::mesh::CellType;
-
-/// The "N solved" count of the run log.
-fn solved(mess: &str) -> usize {
-    let l = mess.lines().find(|l| l.contains("unknowns  :")).expect("the HM log");
-    let s = l.split(',').next_back().unwrap().trim();
-    s.split_whitespace().next().unwrap().parse().unwrap()
-}
 
 /// The rows of table `name` of a .resu text: (node, values of `cmps`).
 fn values(resu: &str, name: &str, cmps: &[&str]) -> Vec<(String, Vec<f64>)> {
