@@ -36,12 +36,22 @@ pub enum Modelling {
     DPlanHms,
     DPlanHmSi,
     AxisHms,
+    /// Saturated THM: the HM elements with the temperature `TEMP` on their vertices.
+    DPlanThm,
+    DPlanThmd,
+    DPlanThms,
+    AxisThm,
+    AxisThmd,
+    AxisThms,
+    ThreeDThm,
+    ThreeDThmd,
+    ThreeDThms,
     /// PHENOMENE='THERMIQUE': PLAN, AXIS, 3D and their _DIAG variants.
     Thermal(crate::thermal::Modelisation),
 }
 
 impl Modelling {
-    const ALL: [(Modelling, &'static str); 19] = [
+    const ALL: [(Modelling, &'static str); 28] = [
         (Modelling::ThreeD, "3D"),
         (Modelling::ThreeDHm, "3D_HM"),
         (Modelling::ThreeDHmd, "3D_HMD"),
@@ -61,6 +71,15 @@ impl Modelling {
         (Modelling::DPlanHms, "D_PLAN_HMS"),
         (Modelling::DPlanHmSi, "D_PLAN_HM_SI"),
         (Modelling::AxisHms, "AXIS_HMS"),
+        (Modelling::DPlanThm, "D_PLAN_THM"),
+        (Modelling::DPlanThmd, "D_PLAN_THMD"),
+        (Modelling::DPlanThms, "D_PLAN_THMS"),
+        (Modelling::AxisThm, "AXIS_THM"),
+        (Modelling::AxisThmd, "AXIS_THMD"),
+        (Modelling::AxisThms, "AXIS_THMS"),
+        (Modelling::ThreeDThm, "3D_THM"),
+        (Modelling::ThreeDThmd, "3D_THMD"),
+        (Modelling::ThreeDThms, "3D_THMS"),
     ];
 
     /// From Code_Aster's name; None for a modelisation we do not know.
@@ -98,29 +117,41 @@ impl Modelling {
     pub fn dim(self) -> usize {
         use Modelling::*;
         match self {
-            ThreeD | ThreeDHm | ThreeDHmd | ThreeDSi | ThreeDDil | ThreeDHms | ThreeDHmSi => 3,
+            ThreeD | ThreeDHm | ThreeDHmd | ThreeDSi | ThreeDDil | ThreeDHms | ThreeDHmSi | ThreeDThm | ThreeDThmd
+            | ThreeDThms => 3,
             Thermal(m) => m.dim(),
             _ => 2,
         }
     }
 
-    /// Saturated hydro-mechanics (the _HM, _HMD, _HMS and _HM_SI variants).
-    pub fn is_hm(self) -> bool {
+    /// Saturated thermo-hydro-mechanics (the _THM, _THMD and _THMS variants).
+    pub fn is_thm(self) -> bool {
         use Modelling::*;
         matches!(
             self,
-            ThreeDHm
-                | ThreeDHmd
-                | ThreeDHms
-                | ThreeDHmSi
-                | DPlanHm
-                | DPlanHmd
-                | DPlanHms
-                | DPlanHmSi
-                | AxisHm
-                | AxisHmd
-                | AxisHms
+            DPlanThm | DPlanThmd | DPlanThms | AxisThm | AxisThmd | AxisThms | ThreeDThm | ThreeDThmd | ThreeDThms
         )
+    }
+
+    /// Saturated hydro-mechanics (the _HM, _HMD, _HMS and _HM_SI variants), with or without the
+    /// temperature ([`Modelling::is_thm`]).
+    pub fn is_hm(self) -> bool {
+        use Modelling::*;
+        self.is_thm()
+            || matches!(
+                self,
+                ThreeDHm
+                    | ThreeDHmd
+                    | ThreeDHms
+                    | ThreeDHmSi
+                    | DPlanHm
+                    | DPlanHmd
+                    | DPlanHms
+                    | DPlanHmSi
+                    | AxisHm
+                    | AxisHmd
+                    | AxisHms
+            )
     }
 
     /// The cells an element of this modelisation is built on: HM elements exist on quadratic cells
@@ -139,10 +170,12 @@ impl Modelling {
         use crate::fem::elasticity::Modelisation as M;
         use Modelling::*;
         match self {
-            ThreeD | ThreeDHm | ThreeDHmd | ThreeDHms | ThreeDHmSi => Some(M::ThreeD),
-            DPlan | DPlanHm | DPlanHmd | DPlanHms | DPlanHmSi => Some(M::DPlan),
+            ThreeD | ThreeDHm | ThreeDHmd | ThreeDHms | ThreeDHmSi | ThreeDThm | ThreeDThmd | ThreeDThms => {
+                Some(M::ThreeD)
+            }
+            DPlan | DPlanHm | DPlanHmd | DPlanHms | DPlanHmSi | DPlanThm | DPlanThmd | DPlanThms => Some(M::DPlan),
             CPlan => Some(M::CPlan),
-            Axis | AxisHm | AxisHmd | AxisHms => Some(M::Axis),
+            Axis | AxisHm | AxisHmd | AxisHms | AxisThm | AxisThmd | AxisThms => Some(M::Axis),
             _ => None,
         }
     }
@@ -299,7 +332,8 @@ pub enum LoadItem {
     /// PESANTEUR: gravity of magnitude `g` along `direction`, on the cells.
     Gravity { g: f64, direction: [f64; 3], cells: Option<Vec<usize>> },
     /// FLUX_THM_REP FLUN_HYDR1: a fluid mass flux entering through skin cells (kg m⁻² s⁻¹).
-    FluxThm { cells: Vec<usize>, value: LoadValue },
+    /// With `heat`: FLUX_THM_REP FLUN, the heat flux entering a THM model (W m⁻²).
+    FluxThm { cells: Vec<usize>, value: LoadValue, heat: bool },
     /// LIAISON_DDL: Σ coef·u(node, component) = value.
     Relation { terms: Vec<(usize, String, f64)>, value: LoadValue },
     /// AFFE_CHAR_THER(_F): a heat flux, exchange or source.

@@ -80,8 +80,9 @@ pub enum Force<'a> {
     LipPressure { crack: usize, name: &'a str, value: Value<'a> },
     /// Gravity of magnitude `g` along `direction` on the cells (all of the model's when None).
     Gravity { g: f64, direction: [f64; 3], cells: Option<&'a [usize]> },
-    /// A fluid mass flux entering through skin cells (FLUX_THM_REP FLUN_HYDR1).
-    Flux { cells: &'a [usize], value: Value<'a> },
+    /// A fluid mass flux entering through skin cells (FLUX_THM_REP FLUN_HYDR1), or with `heat` the heat
+    /// flux entering a THM model (FLUX_THM_REP FLUN), both per unit time.
+    Flux { cells: &'a [usize], value: Value<'a>, heat: bool },
     /// A heat flux density entering through skin cells (FLUX_REP FLUN).
     HeatFlux { cells: &'a [usize], value: Value<'a> },
     /// A heat flux vector φ on skin cells, whose density there is φ · n (FLUX_REP FLUX_X FLUX_Y FLUX_Z).

@@ -21,6 +21,12 @@ pub struct PointState {
     pub rho: f64,
     pub eps: [f64; 6],
     pub p: f64,
+    /// THM: the temperature of the point (TEMP, from THM_INIT TEMP), the liquid's enthalpy `ENT11`, the
+    /// non-convected heat `QPRIM` and the heat flux `FHTX..Z` (zero in HM).
+    pub temp: f64,
+    pub h: f64,
+    pub qp: f64,
+    pub qt: [f64; 3],
 }
 
 impl PointState {
@@ -35,6 +41,10 @@ impl PointState {
             rho: m.rho_l,
             eps: [0.0; 6],
             p: 0.0,
+            temp: 0.0,
+            h: 0.0,
+            qp: 0.0,
+            qt: [0.0; 3],
         }
     }
 
@@ -105,21 +115,27 @@ pub fn update(
     let m = prev.m + phi * rho * (1.0 + eps_v) - prev.phi * prev.rho * (1.0 + prev.eps_v());
     let kappa = mat.mobility();
     let w: [f64; 3] = std::array::from_fn(|i| rho * kappa * (-grad_p[i] + rho * g[i]));
+    let der = derivatives(mat, phi, rho, kappa, grad_p, g);
+    Ok((PointState { sig, sigp, m, w, phi, rho, eps: *eps, p, ..*prev }, der))
+}
+
+/// The derivatives of the saturated update at the end state (porosity φ, density ρ, mobility κ = K/μ).
+pub(crate) fn derivatives(mat: &Biot, phi: f64, rho: f64, kappa: f64, grad_p: &[f64; 3], g: &[f64; 3]) -> Derivatives {
+    let b = mat.biot;
     // ∂φ/∂p = (b − φ)/K_s, ∂ρ/∂p = ρ/K_w.
-    let dphi_dp = (b - phi) * inv_ks;
+    let dphi_dp = (b - phi) * mat.inv_ks();
     let drho_dp = rho * mat.inv_kw;
     // The mass content's tangent as Code_Aster assembles it (`dmdepv`, `dmwdp1`): ρb and ρ(φ/K_w + c_s),
     // the derivatives of M without the (1 + ε_v) factor and the change of φ with ε_v — a tangent within
     // O(ε_v) of the exact one. The converged state is the same; the prediction, which Code_Aster's mixed
     // criterion often accepts as it is, carries that difference, and so do its non-regression values.
-    let der = Derivatives {
+    Derivatives {
         dsigp_dp: -b,
         dm_depsv: rho * b,
         dm_dp: rho * (phi * mat.inv_kw + dphi_dp),
         dw_dgradp: -rho * kappa,
         dw_dp: std::array::from_fn(|i| kappa * drho_dp * (-grad_p[i] + 2.0 * rho * g[i])),
-    };
-    Ok((PointState { sig, sigp, m, w, phi, rho, eps: *eps, p }, der))
+    }
 }
 
 #[cfg(test)]

@@ -10,6 +10,8 @@
 //!   element's internal forces and tangent, displacement quadratic on all nodes and pressure linear on
 //!   the vertices.
 //!
+//! - [`thermal`]: the thermal part of saturated THM (`KIT_THM`) at a point: thermal expansion of the
+//!   skeleton and the liquid, the liquid's enthalpy, the non-convected heat, Fourier's flux.
 //! - [`physics`]: the problem of a model (its cells' elements, materials and numbering) as a
 //!   [`crate::fem::physics::Physics`]: its loads, its element loop and its fields.
 //!
@@ -19,6 +21,7 @@ pub mod element;
 pub mod law;
 pub mod material;
 pub mod physics;
+pub mod thermal;
 
 pub use element::{CellPoints, Kinematics, Variant};
 pub use law::PointState;

@@ -5,8 +5,9 @@
 //! on the pressures, each with its Heaviside parts on an X-FEM model), the element loop, and the fields
 //! DEPL, SIEF_ELGA and VARI_ELGA.
 
-use super::element::{element, flux_load, StepData, Variant};
+use super::element::{element_with, flux_load, StepData, Variant};
 use super::law::PointState;
+use super::thermal::ThermalMat;
 use super::{Biot, CellPoints, Kinematics};
 use crate::diag::{Error, Result};
 use crate::fem::assembly::{Assembler, ElementDofs};
@@ -31,6 +32,8 @@ pub struct HmCell {
     pub pesa_mult: Option<Multiplier>,
     /// The global numbers of the cell's local unknowns.
     pub dofs: Vec<usize>,
+    /// THM: the thermal parameters (None in HM).
+    pub thermal: Option<ThermalMat>,
 }
 
 /// The saturated HM problem of a model.
@@ -48,6 +51,8 @@ pub struct HmProblem {
     pub numbering: DofNumbering,
     /// The index of PRE1 among the numbering's components.
     pub pre1: usize,
+    /// THM: the index of TEMP among the numbering's components (None in HM).
+    pub temp: Option<usize>,
     /// MODI_MODELE_XFEM: the enrichment of an X-FEM model (Heaviside-enriched displacement and pressure,
     /// components `H<j>X … H<j>PRE1` after the standard ones).
     pub xfem: Option<Rc<XfemModel>>,
@@ -115,7 +120,8 @@ impl Physics for HmProblem {
     type State = Vec<Vec<PointState>>;
 
     fn describe(&self) -> String {
-        format!("{}, KIT_HM ELAS/LIQU_SATU/HYDR_UTIL, θ = {}", self.modelling, self.theta)
+        let kit = if self.temp.is_some() { "KIT_THM" } else { "KIT_HM" };
+        format!("{}, {kit} ELAS/LIQU_SATU/HYDR_UTIL, θ = {}", self.modelling, self.theta)
     }
 
     fn unknowns(&self) -> usize {
@@ -146,12 +152,13 @@ impl Physics for HmProblem {
         for (i, ((c, cell), prev_c)) in self.elements().zip(prev).enumerate() {
             let data = StepData { dt: step.dt(), theta: self.theta, gravity: self.gravity(cell, step.t1)? };
             let ue: Vec<f64> = cell.dofs.iter().map(|&d| u[d]).collect();
-            let out = element(&cell.points, &cell.mat, &ue, prev_c, &data).map_err(|e| {
-                Failure::Step(Error::runtime(format!(
-                    "integration failure in cell {}: {}",
-                    self.mesh.cell_names[c], e.0
-                )))
-            })?;
+            let out =
+                element_with(&cell.points, &cell.mat, cell.thermal.as_ref(), &ue, prev_c, &data).map_err(|e| {
+                    Failure::Step(Error::runtime(format!(
+                        "integration failure in cell {}: {}",
+                        self.mesh.cell_names[c], e.0
+                    )))
+                })?;
             let _ = i;
             if let Some(asm) = tangent.as_deref_mut() {
                 asm.add_matrix(&cell.dofs, &out.k);
@@ -210,7 +217,9 @@ impl Physics for HmProblem {
             Some(d) => Ok(Some(d)),
             // A middle node carries no pressure, a node outside the interface's reach no Heaviside
             // unknown: Code_Aster passes over them (afddli).
-            None if (self.is_pressure(k) || self.xfem.is_some() && component.starts_with('H'))
+            None if (self.is_pressure(k)
+                || Some(k) == self.temp
+                || self.xfem.is_some() && component.starts_with('H'))
                 && num.has_node(node) =>
             {
                 Ok(None)
@@ -316,7 +325,19 @@ impl Physics for HmProblem {
                             }
                         }
                     }
-                    Force::Flux { cells, value } => {
+                    Force::Flux { cells, value, heat } => {
+                        // FLUN_HYDR1 on the pressures, FLUN (a heat flux) on the temperatures of a THM model.
+                        let (comp, comp_name) = match (*heat, self.temp) {
+                            (false, _) => (self.pre1, "PRE1"),
+                            (true, Some(k)) => (k, "TEMP"),
+                            (true, None) => {
+                                return Err(excit(format!(
+                                    "load {name}: FLUX_THM_REP FLUN is a heat flux; {} has no temperature (the *_THM \
+                                     modelisations have)",
+                                    self.modelling
+                                )))
+                            }
+                        };
                         for &c in cells.iter() {
                             self.skin_cell(name, c)?;
                             let t_c = mesh.cell_types[c];
@@ -331,8 +352,11 @@ impl Physics for HmProblem {
                             let dofs = (0..fe.len())
                                 .map(|k| {
                                     let n = mesh.cells[c][k];
-                                    num.dof(n, self.pre1).ok_or_else(|| {
-                                        excit(format!("load {name}: node {} carries no PRE1", mesh.node_names[n]))
+                                    num.dof(n, comp).ok_or_else(|| {
+                                        excit(format!(
+                                            "load {name}: node {} carries no {comp_name}",
+                                            mesh.node_names[n]
+                                        ))
                                     })
                                 })
                                 .collect::<Result<Vec<usize>>>()?;
@@ -644,14 +668,19 @@ fn add_enriched(p: &HmProblem, c: usize, fe: &[f64], density: Density, f: &mut [
     Ok(true)
 }
 
-/// The components of SIEF_ELGA on an HM element (Code_Aster's ECONTPG: σ', σ_p, M, w).
-pub fn sief_components(dim: usize) -> Vec<String> {
+/// The components of SIEF_ELGA on an HM element (Code_Aster's ECONTPG: σ', σ_p, M, w), on a THM one
+/// followed by the enthalpy `ENT11`, the non-convected heat `QPRIM` and the heat flux `FHTX..`.
+pub fn sief_components(dim: usize, thm: bool) -> Vec<String> {
     let mut v: Vec<String> =
         ["SIXX", "SIYY", "SIZZ", "SIXY", "SIXZ", "SIYZ", "SIPXX", "SIPYY", "SIPZZ", "SIPXY", "SIPXZ", "SIPYZ", "M11"]
             .iter()
             .map(|s| s.to_string())
             .collect();
     v.extend(["FH11X", "FH11Y", "FH11Z"][..dim].iter().map(|s| s.to_string()));
+    if thm {
+        v.extend(["ENT11", "QPRIM"].iter().map(|s| s.to_string()));
+        v.extend(["FHTX", "FHTY", "FHTZ"][..dim].iter().map(|s| s.to_string()));
+    }
     v
 }
 
@@ -670,7 +699,8 @@ pub fn step_fields(p: &HmProblem, u: &[f64], states: &[Vec<PointState>]) -> BTre
     }
     let components = num.components.iter().map(|s| s.to_string()).collect();
     let dim = p.kin.dim();
-    let sief_c = sief_components(dim);
+    let thm = p.temp.is_some();
+    let sief_c = sief_components(dim, thm);
     let mut sief: Vec<Option<Vec<f64>>> = vec![None; p.mesh.cells.len()];
     let mut vari: Vec<Option<Vec<f64>>> = vec![None; p.mesh.cells.len()];
     for ((c, cell), st) in p.elements().zip(states) {
@@ -685,6 +715,10 @@ pub fn step_fields(p: &HmProblem, u: &[f64], states: &[Vec<PointState>]) -> BTre
             s.extend_from_slice(&ps.sigp);
             s.push(ps.m);
             s.extend_from_slice(&ps.w[..dim]);
+            if thm {
+                s.extend([ps.h, ps.qp]);
+                s.extend_from_slice(&ps.qt[..dim]);
+            }
             v.extend([0.0, ps.rho - cell.mat.rho_l, ps.phi - cell.mat.phi0]);
         }
         sief[c] = Some(s);

@@ -156,19 +156,25 @@ fn affe_char(a: &Args, functional: bool) -> Result<Option<ConceptData>> {
         items.push(LoadItem::Pressure { cells, value, shear });
     }
     for occ in a.facts("FLUX_THM_REP") {
-        // FLUN is a heat flux and FLUN_HYDR2 the flux of a second fluid: neither has an equation in a
-        // saturated HM model.
-        for k in ["FLUN", "FLUN_HYDR2", "FLUN_FRAC"] {
+        // FLUN_HYDR2 is the flux of a second fluid: it has no equation in a saturated (T)HM model. FLUN, the
+        // heat flux, acts on the temperature of a THM model (the model refuses it otherwise).
+        for k in ["FLUN_HYDR2", "FLUN_FRAC"] {
             if occ.declares(k) && occ.given(k) {
-                return Err(occ.err(k, "not supported yet (FLUN_HYDR1, the flux of the liquid, is)"));
+                return Err(occ.err(k, "not supported yet (FLUN_HYDR1, the flux of the liquid, and FLUN are)"));
             }
         }
-        let value = occ
-            .val("FLUN_HYDR1")
-            .and_then(load_value)
-            .ok_or_else(|| occ.err("FLUN_HYDR1", "FLUN_HYDR1 is required (the only flux of a saturated HM model)"))?;
+        let hydr = occ.val("FLUN_HYDR1").and_then(load_value);
+        let heat = if occ.declares("FLUN") && occ.given("FLUN") { occ.val("FLUN").and_then(load_value) } else { None };
+        if hydr.is_none() && heat.is_none() {
+            return Err(occ.err("FLUN_HYDR1", "FLUN_HYDR1 or FLUN is required"));
+        }
         let cells = if occ.has("TOUT") { (0..mesh.cells.len()).collect() } else { select_cells(&mesh, occ, &name)? };
-        items.push(LoadItem::FluxThm { cells, value });
+        if let Some(value) = hydr {
+            items.push(LoadItem::FluxThm { cells: cells.clone(), value, heat: false });
+        }
+        if let Some(value) = heat {
+            items.push(LoadItem::FluxThm { cells, value, heat: true });
+        }
     }
     if let Some(occ) = a.declares("PESANTEUR").then(|| a.fact("PESANTEUR")).flatten() {
         let d = occ.reals("DIRECTION");

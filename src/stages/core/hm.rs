@@ -10,6 +10,7 @@ use crate::diag::{Error, Result};
 use crate::fem::dofs::DofNumbering;
 use crate::hm::element::Column;
 pub use crate::hm::physics::{HmCell, HmProblem, HEAVISIDE};
+use crate::hm::thermal::{Coef, ThermalMat};
 use crate::hm::{Biot, CellPoints, Kinematics, Variant};
 use crate::mesh::Mesh;
 use crate::xfem::model::XfemModel;
@@ -30,6 +31,15 @@ pub fn hm_kind(m: Modelling) -> Option<(Kinematics, Variant)> {
         ThreeDHmd => (Kinematics::ThreeD, Variant::Lumped),
         ThreeDHms => (Kinematics::ThreeD, Variant::Selective),
         ThreeDHmSi => (Kinematics::ThreeD, Variant::Reduced),
+        DPlanThm => (Kinematics::DPlan, Variant::Full),
+        DPlanThmd => (Kinematics::DPlan, Variant::Lumped),
+        DPlanThms => (Kinematics::DPlan, Variant::Selective),
+        AxisThm => (Kinematics::Axis, Variant::Full),
+        AxisThmd => (Kinematics::Axis, Variant::Lumped),
+        AxisThms => (Kinematics::Axis, Variant::Selective),
+        ThreeDThm => (Kinematics::ThreeD, Variant::Full),
+        ThreeDThmd => (Kinematics::ThreeD, Variant::Lumped),
+        ThreeDThms => (Kinematics::ThreeD, Variant::Selective),
         _ => return None,
     })
 }
@@ -92,7 +102,14 @@ pub fn biot_of(m: &Material, cell: &str) -> Result<(Biot, Option<ConceptRef>)> {
         phi0: required(m, "THM_INIT", "PORO", cell)?,
         rho_l: required(m, "THM_LIQU", "RHO", cell)?,
         inv_kw: required(m, "THM_LIQU", "UN_SUR_K", cell)?,
-        visc: required(m, "THM_LIQU", "VISC", cell)?,
+        // A viscosity of the temperature (THM) at THM_INIT TEMP here; the THM law evaluates it at each point.
+        visc: match required(m, "THM_LIQU", "VISC", cell) {
+            Ok(v) => v,
+            Err(e) => {
+                let t0 = mat_param(m, "THM_INIT", "TEMP", cell)?.unwrap_or(0.0);
+                coef(m, "THM_LIQU", "VISC", cell, None).ok().and_then(|c| c.at(t0).ok()).ok_or(e)?
+            }
+        },
         perm: perm_in(m, cell)?,
         gravity: [pesa("PESA_X")?, pesa("PESA_Y")?, pesa("PESA_Z")?],
         rho_h: required(m, "THM_DIFFU", "RHO", cell)?,
@@ -128,6 +145,89 @@ fn perm_in(m: &Material, cell: &str) -> Result<f64> {
     }
 }
 
+/// A thermal coefficient of a THM material: a constant, or a function of TEMP (the absolute temperature);
+/// `default` where the parameter may be absent.
+fn coef(m: &Material, beh: &str, param: &str, cell: &str, default: Option<f64>) -> Result<Coef> {
+    use crate::concepts::model::MatValue;
+    let Some(v) = m.behaviours.get(beh).and_then(|b| b.get(param)) else {
+        return default.map(Coef::Const).ok_or_else(|| {
+            Error::runtime(format!(
+                "cell {cell}: the material gives no {beh}/{param}, which a saturated THM model (KIT_THM, LIQU_SATU) \
+                 needs"
+            ))
+        });
+    };
+    let MatValue::Func(f) = v else { return Ok(Coef::Const(mat_param(m, beh, param, cell)?.unwrap_or(0.0))) };
+    let para: Vec<String> = match &*f.data() {
+        ConceptData::Function(g) => vec![g.nom_para.clone()],
+        ConceptData::Formula(g) => g.nom_para.clone(),
+        ConceptData::Nappe(g) => vec![g.nom_para.clone(), g.nom_para_fonc.clone()],
+        _ => Vec::new(),
+    };
+    if para.iter().all(|p| p == "TOUTPARA") || para.is_empty() {
+        return Ok(Coef::Const(mat_param(m, beh, param, cell)?.unwrap_or(0.0)));
+    }
+    if let Some(p) = para.iter().find(|p| *p != "TEMP") {
+        return Err(Error::unsupported(format!(
+            "cell {cell}: {beh}/{param} ({}) is a function of {p}; THM parameters of the temperature (TEMP) or \
+             constant are supported",
+            f.label()
+        )));
+    }
+    let (f, name) = (f.clone(), format!("{beh}/{param}"));
+    Ok(Coef::OfTemp(Rc::new(move |t: f64| {
+        super::eval::eval_named(&f, &|_: &str| Ok(t)).map_err(|e| format!("{name} at TEMP = {t}: {}", e.msg))
+    })))
+}
+
+/// The thermal parameters of a THM material (ELAS ALPHA, THM_INIT TEMP, THM_LIQU ALPHA CP VISC
+/// D_VISC_TEMP, THM_DIFFU CP LAMB_T D_LB_T LAMB_CT); what is not supported yet stops by name.
+pub fn thermal_of(m: &Material, cell: &str) -> Result<ThermalMat> {
+    for (beh, params) in [
+        (
+            "THM_DIFFU",
+            &[
+                "LAMB_TL", "LAMB_TN", "LAMB_TT", "LAMB_C_L", "LAMB_C_N", "LAMB_C_T", "LAMB_S", "LAMB_PHI", "D_LB_S",
+                "D_LB_PHI", "D_LB_TL", "D_LB_TN", "D_LB_TT", "SOURCE",
+            ][..],
+        ),
+        ("ELAS", &["ALPHA_L", "ALPHA_N"][..]),
+    ] {
+        for p in params {
+            if m.behaviours.get(beh).is_some_and(|b| b.contains_key(*p)) {
+                return Err(Error::unsupported(format!(
+                    "cell {cell}: {beh}/{p} is not supported yet in THM (isotropic LAMB_T, LAMB_CT and ALPHA are)"
+                )));
+            }
+        }
+    }
+    let has = |beh: &str, p: &str| m.behaviours.get(beh).is_some_and(|b| b.contains_key(p));
+    if !has("THM_DIFFU", "LAMB_T") && !has("THM_DIFFU", "LAMB_CT") {
+        return Err(Error::runtime(format!(
+            "cell {cell}: the material gives no THM_DIFFU/LAMB_T (nor LAMB_CT): a THM model needs a thermal conductivity"
+        )));
+    }
+    let th = ThermalMat {
+        t0: mat_param(m, "THM_INIT", "TEMP", cell)?.unwrap_or(0.0),
+        alpha_s: coef(m, "ELAS", "ALPHA", cell, Some(0.0))?,
+        alpha_l: coef(m, "THM_LIQU", "ALPHA", cell, None)?,
+        cp_l: coef(m, "THM_LIQU", "CP", cell, None)?,
+        cp_s: coef(m, "THM_DIFFU", "CP", cell, None)?,
+        visc: coef(m, "THM_LIQU", "VISC", cell, None)?,
+        dvisc: coef(m, "THM_LIQU", "D_VISC_TEMP", cell, Some(0.0))?,
+        lamb_t: coef(m, "THM_DIFFU", "LAMB_T", cell, Some(0.0))?,
+        dlamb_t: coef(m, "THM_DIFFU", "D_LB_T", cell, Some(0.0))?,
+        lamb_ct: coef(m, "THM_DIFFU", "LAMB_CT", cell, Some(0.0))?,
+    };
+    if th.t0 <= 0.0 {
+        return Err(Error::runtime(format!(
+            "cell {cell}: THM_INIT/TEMP = {} K: the reference temperature of a THM model must be positive (kelvins)",
+            th.t0
+        )));
+    }
+    Ok(th)
+}
+
 /// The HM problem of a model whose cells all carry one HM modelisation.
 pub fn hm_problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<HmProblem> {
     let m = model.model()?;
@@ -158,7 +258,11 @@ pub fn hm_problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<HmProblem> {
     };
     let dim = kin.dim();
     let pre1 = dim;
+    let thm = modelling.is_thm();
     let xm = m.xfem.clone();
+    if thm && xm.is_some() {
+        return Err(Error::unsupported(format!("X-FEM {modelling} elements are not supported yet")));
+    }
     if xm.is_some() && variant != Variant::Full {
         return Err(Error::unsupported(format!(
             "X-FEM {modelling} elements are not supported yet (D_PLAN_HM and 3D_HM are)"
@@ -179,6 +283,9 @@ pub fn hm_problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<HmProblem> {
             mask[n] |= (1 << dim) - 1;
             if k < t.nvertices() {
                 mask[n] |= 1 << pre1;
+                if thm {
+                    mask[n] |= 1 << (pre1 + 1);
+                }
                 vertex[n] = true;
             }
         }
@@ -196,13 +303,17 @@ pub fn hm_problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<HmProblem> {
     }
     let mut names = crate::fem::dofs::COMPONENTS[..dim].to_vec();
     names.push("PRE1");
+    if thm {
+        names.push("TEMP");
+    }
     for set in HEAVISIDE.iter().take(nsets) {
         names.extend(&set[..dim]);
         names.push(set[3]);
     }
     let numbering = DofNumbering::with_components(names, mask);
     let mut cells: Vec<Option<HmCell>> = (0..mesh.cells.len()).map(|_| None).collect();
-    let mut cache: Vec<(*const crate::concepts::Concept, (Biot, Option<ConceptRef>))> = Vec::new();
+    type Cached = (Biot, Option<ConceptRef>, Option<ThermalMat>);
+    let mut cache: Vec<(*const crate::concepts::Concept, Cached)> = Vec::new();
     // PESA_MULT, a function of INST.
     let multiplier = |f: ConceptRef| -> crate::hm::physics::Multiplier {
         Rc::new(move |t: f64| super::eval::eval_at(&f, &[0.0; 3], t))
@@ -213,19 +324,27 @@ pub fn hm_problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<HmProblem> {
             return Err(Error::runtime(format!("cell {name} of the model has no material (AFFE_MATERIAU)")));
         };
         let key = Rc::as_ptr(mc);
-        let (mat, pesa_mult) = match cache.iter().find(|(k, _)| *k == key) {
+        let (mat, pesa_mult, thermal) = match cache.iter().find(|(k, _)| *k == key) {
             Some((_, v)) => v.clone(),
             None => {
                 let md = mc.data();
                 let ConceptData::Material(mat) = &*md else { unreachable!("AFFE_MATERIAU holds materials") };
-                let v = biot_of(mat, name)?;
+                let (b, pm) = biot_of(mat, name)?;
+                let th = if thm { Some(thermal_of(mat, name)?) } else { None };
+                let v = (b, pm, th);
                 cache.push((key, v.clone()));
                 v
             }
         };
         let points = match &xm {
             Some(x) if x.cells.contains_key(&c) => enriched_points(&mesh, x, kin, c, &vertex),
-            _ => CellPoints::new(kin, variant, mesh.cell_types[c], &coords_of(&mesh, c)),
+            _ => CellPoints::new(kin, variant, mesh.cell_types[c], &coords_of(&mesh, c)).map(|p| {
+                if thm {
+                    p.with_temperature()
+                } else {
+                    p
+                }
+            }),
         }
         .map_err(|e| Error::runtime(format!("cell {name}: {e}")))?;
         let dofs = numbering.cell_dofs(&mesh.cells[c]).expect("the cell's nodes are numbered");
@@ -236,7 +355,7 @@ pub fn hm_problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<HmProblem> {
                 points.ndof
             )));
         }
-        cells[c] = Some(HmCell { points, mat, pesa_mult: pesa_mult.map(multiplier), dofs });
+        cells[c] = Some(HmCell { points, mat, pesa_mult: pesa_mult.map(multiplier), dofs, thermal });
     }
     Ok(HmProblem {
         mesh,
@@ -248,6 +367,7 @@ pub fn hm_problem(model: &ConceptRef, chmat: &ConceptRef) -> Result<HmProblem> {
         cells,
         numbering,
         pre1,
+        temp: thm.then_some(pre1 + 1),
         xfem: xm,
         theta: 1.0,
         pressure_row_scale: 0.0,

@@ -114,7 +114,9 @@ fn typed<'v>(name: String, functional: bool, items: &'v [LoadItem], t: f64, mult
             LoadItem::Gravity { g, direction, cells } => {
                 forces.push(Force::Gravity { g: mult * g, direction: *direction, cells: cells.as_deref() })
             }
-            LoadItem::FluxThm { cells, value: v } => forces.push(Force::Flux { cells, value: value(v, t, mult) }),
+            LoadItem::FluxThm { cells, value: v, heat } => {
+                forces.push(Force::Flux { cells, value: value(v, t, mult), heat: *heat })
+            }
             LoadItem::Heat(h) => forces.push(heat(h, t, mult)?),
         }
     }

@@ -228,7 +228,7 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     let hm = model.model()?.elements.iter().flatten().any(|e| e.modelisation.is_hm()) && model.model()?.xfem.is_none();
     let mut wanted = Vec::new();
     let kws: &[&str] = if hm {
-        &["CONTRAINTE", "DEFORMATION", "CRITERES", "VARI_INTERNE"]
+        &["CONTRAINTE", "DEFORMATION", "CRITERES", "VARI_INTERNE", "FORCE"]
     } else {
         &["CONTRAINTE", "DEFORMATION", "CRITERES", "VARI_INTERNE", "FORCE", "ENERGIE"]
     };
@@ -243,7 +243,7 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     }
     a.refuse(&["ERREUR", "EQUI", "CHAM_UTIL", "HYDRAULIQUE", "PROPRIETES"])?;
     if hm {
-        a.refuse(&["FORCE", "ENERGIE"])?;
+        a.refuse(&["ENERGIE"])?;
     }
     let mesh = model.model()?.current_mesh();
     let restrict = if a.has("GROUP_MA") || a.has("MAILLE") {

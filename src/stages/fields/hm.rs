@@ -13,6 +13,8 @@ use crate::diag::Result;
 use crate::fem::elasticity::gauss_to_node_matrix;
 use crate::fem::quadrature::{QuadratureRule, RefDomain};
 use crate::hm::element::{CellPoints, Variant};
+use crate::hm::law::PointState;
+use crate::hm::physics::sief_components;
 use crate::stages::core::hm::{hm_problem, HmProblem};
 
 /// The options CALC_CHAMP computes on HM results.
@@ -33,6 +35,7 @@ pub const OPTIONS: &[&str] = &[
     "EPEQ_NOEU",
     "VARI_ELNO",
     "VARI_NOEU",
+    "FORC_NODA",
 ];
 
 const EPEQ_COMPONENTS: [&str; 5] = ["INVA_2", "PRIN_1", "PRIN_2", "PRIN_3", "INVA_2SG"];
@@ -126,6 +129,15 @@ pub fn calc_champ_hm(
     let sigma_names: Vec<String> = p.kin.mechanics().sigma_names().iter().map(|s| s.to_string()).collect();
     let eps_names: Vec<String> = p.kin.mechanics().epsilon_names().iter().map(|s| s.to_string()).collect();
     let mut passed_over = Vec::new();
+    // The previous order's SIEF_ELGA and the time step, for FORC_NODA (Code_Aster's `fnoevo`).
+    let mut previous = std::collections::BTreeMap::new();
+    if wanted.iter().any(|o| o == "FORC_NODA") {
+        for w in steps.windows(2) {
+            if let Some(f) = w[0].fields.get("SIEF_ELGA") {
+                previous.insert(w[1].nume_ordre, (f.clone(), w[1].inst - w[0].inst));
+            }
+        }
+    }
     for step in steps.iter_mut() {
         if !orders.is_empty() && !orders.contains(&step.nume_ordre) {
             continue;
@@ -140,6 +152,8 @@ pub fn calc_champ_hm(
             .map_err(|m| a.err("RESULTAT", format!("order {}: {m}", step.nume_ordre)))?;
         for o in wanted {
             let f = match o.as_str() {
+                "FORC_NODA" => forc_noda(&p, step, previous.get(&step.nume_ordre), only)
+                    .map_err(|m| a.err("FORCE", format!("order {}: {m}", step.nume_ordre)))?,
                 "SIGM_ELGA" => Field::Elga { components: sigma_names.clone(), cells: fields.sigm_elga.clone() },
                 "SIGM_ELNO" => Field::Elno { components: sigma_names.clone(), cells: fields.sigm_elno.clone() },
                 "SIGM_NOEU" => Field::Node {
@@ -214,6 +228,69 @@ pub fn calc_champ_hm(
         }
     }
     Ok(passed_over)
+}
+
+/// FORC_NODA of a step (`fnothm`): the nodal forces of the stored stresses and fluid mass on the
+/// displacements, with the fluid's gravity at INST 0 (Code_Aster's); zero on PRE1 and TEMP.
+fn forc_noda(
+    p: &HmProblem,
+    step: &Step,
+    previous: Option<&(Field, f64)>,
+    only: &dyn Fn(&usize) -> bool,
+) -> std::result::Result<Field, String> {
+    let Some(Field::Elga { components: names, cells: sief }) = step.fields.get("SIEF_ELGA") else {
+        return Err("the result holds no SIEF_ELGA".into());
+    };
+    let prev_cells = match previous {
+        Some((Field::Elga { components, cells }, dt)) if components == names => Some((cells, *dt)),
+        _ => None,
+    };
+    let num = &p.numbering;
+    let ncomp = num.ncomp;
+    let mut values = vec![f64::NAN; p.mesh.nnodes() * ncomp];
+    for d in 0..num.ndofs() {
+        let (n, k) = num.node_comp(d);
+        values[n * ncomp + k] = 0.0;
+    }
+    let nsief = names.len();
+    let dim = p.kin.dim();
+    let thm = p.temp.is_some();
+    // The point states of stored SIEF_ELGA values (the components of `sief_components`).
+    let states = |s: &[f64], mat: &crate::hm::Biot| -> Vec<PointState> {
+        s.chunks(nsief)
+            .map(|x| {
+                let mut ps = PointState::initial(mat);
+                ps.sig = std::array::from_fn(|i| x[i]);
+                ps.sigp = std::array::from_fn(|i| x[6 + i]);
+                ps.m = x[12];
+                ps.w[..dim].copy_from_slice(&x[13..13 + dim]);
+                if thm && x.len() >= 15 + 2 * dim {
+                    ps.h = x[13 + dim];
+                    ps.qp = x[14 + dim];
+                    ps.qt[..dim].copy_from_slice(&x[15 + dim..15 + 2 * dim]);
+                }
+                ps
+            })
+            .collect()
+    };
+    for (c, cell) in p.elements().filter(|(c, _)| only(c)) {
+        let Some(s) = &sief[c] else { continue };
+        let npts = cell.points.points.len();
+        if s.len() != npts * nsief || nsief != sief_components(dim, thm).len() {
+            return Err(format!("cell {}: the stored fields do not match the model's points", p.mesh.cell_names[c]));
+        }
+        let now = states(s, &cell.mat);
+        let before = prev_cells.and_then(|(cells, dt)| {
+            cells[c].as_ref().filter(|v| v.len() == s.len()).map(|v| (states(v, &cell.mat), dt))
+        });
+        let g = p.gravity(cell, 0.0).map_err(|e| e.msg)?;
+        let fe = cell.points.stored_forces(&now, before.as_ref().map(|(v, dt)| (v.as_slice(), *dt)), &g);
+        for (&d, v) in cell.dofs.iter().zip(&fe) {
+            let (n, k) = num.node_comp(d);
+            values[n * ncomp + k] += v;
+        }
+    }
+    Ok(Field::Node { components: num.components.iter().map(|s| s.to_string()).collect(), values })
 }
 
 /// The point and node fields of one step.

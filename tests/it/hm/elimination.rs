@@ -1,16 +1,9 @@
 //! Simulate only what the scene calls for: a pressure prescribed on part of the domain removes those
 //! unknowns from the solve, and the answer is the same where both scenes apply.
 
-use super::{column, run};
+use super::{column, run, solved};
 use aster::mesh::generate::box_mesh;
 use aster::mesh::CellType;
-
-/// The "N solved" count of the run log.
-fn solved(mess: &str) -> usize {
-    let l = mess.lines().find(|l| l.contains("unknowns  :")).expect("the HM log");
-    let s = l.split(',').next_back().unwrap().trim();
-    s.split_whitespace().next().unwrap().parse().unwrap()
-}
 
 /// The PRE1 values of the `P` table (node, value) of a run's .resu text.
 fn pressures(resu: &str) -> Vec<(String, f64)> {

@@ -6,12 +6,20 @@ mod elimination;
 mod newton;
 mod solver;
 mod terzaghi_study;
+mod thermal;
 
 use aster::med;
 use aster::mesh::Mesh;
 use aster::runner::export::Dir;
 use aster::runner::{self, Outcome, RunOptions};
 use std::path::Path;
+
+/// The "N solved" count of an HM run's log.
+pub fn solved(mess: &str) -> usize {
+    let l = mess.lines().find(|l| l.contains("unknowns  :")).expect("the HM log");
+    let s = l.split(',').next_back().unwrap().trim();
+    s.split_whitespace().next().unwrap().parse().unwrap()
+}
 
 /// Write `mesh` and `comm` in `dir`, run the command file with the mesh on unit 20; the outcome and
 /// the message file.

@@ -46,7 +46,8 @@ pub fn initial_state(cfg: &Settings, p: &HmProblem) -> Result<(Vec<f64>, Vec<Vec
     if let Some(c) = &e.sigm {
         let fd = c.field().map_err(|er| cfg.err("ETAT_INIT/SIGM", er.msg))?;
         let field = fd.reals(&c.label()).map_err(|er| cfg.err("ETAT_INIT/SIGM", er.msg))?;
-        let sief = sief_components(dim);
+        let thm = p.temp.is_some();
+        let sief = sief_components(dim, thm);
         for ((cell_id, _), st) in p.elements().zip(states.iter_mut()) {
             let Some(vals) = cell_values(field, cell_id, st.len()).map_err(|m| cfg.err("ETAT_INIT/SIGM", m))? else {
                 continue;
@@ -60,6 +61,13 @@ pub fn initial_state(cfg: &Settings, p: &HmProblem) -> Result<(Vec<f64>, Vec<Vec
                 ps.m = get(k, "M11");
                 for i in 0..dim {
                     ps.w[i] = get(k, &sief[13 + i]);
+                }
+                if thm {
+                    ps.h = get(k, "ENT11");
+                    ps.qp = get(k, "QPRIM");
+                    for i in 0..dim {
+                        ps.qt[i] = get(k, &sief[15 + dim + i]);
+                    }
                 }
             }
         }

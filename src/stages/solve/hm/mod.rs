@@ -24,8 +24,9 @@ use std::time::Instant;
 
 pub fn stat_non_line_hm(ctx: &mut Ctx, cfg: &Settings) -> Result<Option<ConceptData>> {
     let t_start = Instant::now();
-    setup::behaviour(cfg)?;
     let chmat = cfg.chmat()?;
+    let thm = cfg.model.model()?.elements.iter().flatten().any(|e| e.modelisation.is_thm());
+    setup::behaviour(cfg, thm)?;
     let mut p = hm_problem(&cfg.model, &chmat).map_err(|e| e.at(cfg.span_of("MODELE")))?;
     p.theta = cfg.theta;
     // The HM tangent is symmetric only once its pressure rows are scaled by 1/ρ₀ of the liquid, and not

@@ -6,24 +6,24 @@ use crate::stages::core::driver::StepLog;
 use crate::stages::core::hm::HmProblem;
 use crate::stages::core::settings::Settings;
 
-/// COMPORTEMENT: KIT_HM with RELATION_KIT=('ELAS', 'LIQU_SATU', 'HYDR_UTIL') on the whole model, small
-/// strains.
-pub fn behaviour(cfg: &Settings) -> Result<()> {
+/// COMPORTEMENT: KIT_HM (KIT_THM on a THM model) with RELATION_KIT=('ELAS', 'LIQU_SATU', 'HYDR_UTIL') on
+/// the whole model, small strains.
+pub fn behaviour(cfg: &Settings, thm: bool) -> Result<()> {
+    let (kit_name, what) = if thm { ("KIT_THM", "a saturated THM model") } else { ("KIT_HM", "a saturated HM model") };
     if cfg.behaviours.is_empty() {
         return Err(cfg.err(
             "COMPORTEMENT",
-            "a saturated HM model needs COMPORTEMENT=_F(RELATION='KIT_HM', RELATION_KIT=('ELAS', 'LIQU_SATU', \
-             'HYDR_UTIL'))",
+            format!(
+                "{what} needs COMPORTEMENT=_F(RELATION='{kit_name}', RELATION_KIT=('ELAS', 'LIQU_SATU', 'HYDR_UTIL'))"
+            ),
         ));
     }
     for b in &cfg.behaviours {
         let rel = &b.relation;
-        if rel != "KIT_HM" {
+        if rel != kit_name {
             return Err(b.err(
                 "RELATION",
-                format!(
-                    "RELATION='{rel}' on a saturated HM model: KIT_HM is needed (the others are not supported yet)"
-                ),
+                format!("RELATION='{rel}' on {what}: {kit_name} is needed (the others are not supported yet)"),
             ));
         }
         let kit = &b.kit;
@@ -36,6 +36,12 @@ pub fn behaviour(cfg: &Settings) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The TEMP unknowns the driver eliminated (prescribed).
+fn elim_temp(p: &HmProblem, log: &StepLog) -> usize {
+    let num = &p.numbering;
+    (0..num.ndofs()).filter(|&d| log.eliminated.get(d) == Some(&true) && Some(num.node_comp(d).1) == p.temp).count()
 }
 
 /// What was simulated and how: the unknowns, what was eliminated and why, the couplings that vanish,
@@ -51,13 +57,17 @@ pub fn report(p: &HmProblem, cfg: &Settings, log: &StepLog, stored: usize, secon
         Variant::Lumped => "all terms at the vertices (lumped storage)",
         Variant::Selective => "mechanics and flow at the Gauss points, storage at the vertices",
     };
+    let ntemp = (0..num.ndofs()).filter(|&d| Some(num.node_comp(d).1) == p.temp).count();
+    let nu = nu - ntemp;
+    let kit = if p.temp.is_some() { "KIT_THM" } else { "KIT_HM" };
     let mut s = format!(
-        "  STAT_NON_LINE ({}, KIT_HM ELAS/LIQU_SATU/HYDR_UTIL, θ = {theta}): {} cells, {variant}\n",
+        "  STAT_NON_LINE ({}, {kit} ELAS/LIQU_SATU/HYDR_UTIL, θ = {theta}): {} cells, {variant}\n",
         p.modelling,
         p.bulk.len()
     );
+    let temps = if p.temp.is_some() { format!(", {ntemp} temperatures TEMP") } else { String::new() };
     s.push_str(&format!(
-        "    unknowns  : {} ({nu} displacements, {npre} pressures PRE1{} on vertices), {} solved\n",
+        "    unknowns  : {} ({nu} displacements, {npre} pressures PRE1{}{temps} on vertices), {} solved\n",
         num.ndofs(),
         if p.xfem.is_some() { " and H*PRE1" } else { "" },
         log.solved
@@ -77,7 +87,8 @@ pub fn report(p: &HmProblem, cfg: &Settings, log: &StepLog, stored: usize, secon
             .filter(|&d| log.eliminated.get(d) == Some(&true) && p.is_pressure(num.node_comp(d).1) == pressure)
             .count()
     };
-    let (elim_u, elim_p) = (eliminated(false), eliminated(true));
+    let (elim_p, elim_t) = (eliminated(true), elim_temp(p, log));
+    let elim_u = eliminated(false) - elim_t;
     if elim_p == npre && npre > 0 {
         s.push_str(&format!(
             "    hydraulics: PRE1 prescribed on all {npre} vertices (DDL_IMPO): the flow is not computed, the \
@@ -91,6 +102,23 @@ pub fn report(p: &HmProblem, cfg: &Settings, log: &StepLog, stored: usize, secon
         ));
     } else {
         s.push_str(&format!("    hydraulics: the flow is solved on all {npre} vertices\n"));
+    }
+    if p.temp.is_some() {
+        if elim_t == ntemp && ntemp > 0 {
+            s.push_str(&format!(
+                "    thermal   : TEMP prescribed on all {ntemp} vertices (DDL_IMPO): the {ntemp} temperature unknowns \
+                 are eliminated, the heat equation is not solved; the temperature acts through the thermal \
+                 expansion of the skeleton and the liquid only\n"
+            ));
+        } else if elim_t > 0 {
+            s.push_str(&format!(
+                "    thermal   : TEMP prescribed on {elim_t} of {ntemp} vertices (eliminated); the heat equation is \
+                 solved on the other {}\n",
+                ntemp - elim_t
+            ));
+        } else {
+            s.push_str(&format!("    thermal   : the heat equation is solved on all {ntemp} vertices\n"));
+        }
     }
     s.push_str(&format!("    mechanics : {elim_u} of {nu} displacements prescribed (eliminated)\n"));
     // The couplings the material data switch off.

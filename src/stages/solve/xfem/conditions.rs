@@ -119,7 +119,7 @@ pub fn constraints(cfg: &Settings, s: &Setup, loads: &[Load]) -> Result<Conditio
                 Force::LipPressure { .. } | Force::Gravity { .. } => {}
                 // A fluid flux acts on the hydraulic equations only; they are eliminated when every
                 // hydraulic unknown is prescribed (checked below), and then it changes no unknown.
-                Force::Flux { value, .. } if s.hm => {
+                Force::Flux { value, heat: false, .. } if s.hm => {
                     if s.flow.is_some() && value.constant != Some(0.0) {
                         return Err(cfg.err(
                             "EXCIT",
