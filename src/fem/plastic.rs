@@ -44,6 +44,10 @@ pub type LawOfTemperature = std::rc::Rc<dyn Fn(f64) -> Result<(VonMises, f64), S
 pub struct Temperature {
     pub sources: Vec<NodalTemperature>,
     pub cells: Vec<Option<(f64, usize, LawOfTemperature)>>,
+    /// Whether a point in the natural state (no strain, no stress) starts its step at T_ref (MECA_STATIQUE:
+    /// each instant measured from the natural state) rather than at the temperature of the step's start
+    /// (STAT_NON_LINE: the initial state is free of stress at the first instant's temperature).
+    pub natural_start: bool,
 }
 
 impl Plastic {
@@ -105,6 +109,7 @@ impl Plastic {
         &self,
         i: usize,
         k: usize,
+        old: &PointState,
         temps: (&[Vec<f64>], &[Vec<f64>]),
     ) -> Result<Option<(VonMises, ThermalStep)>, String> {
         let Some(th) = &self.temperature else { return Ok(None) };
@@ -123,7 +128,9 @@ impl Plastic {
             }
             Ok(t)
         };
-        let (tm, tp) = (at(&temps.0[*src])?, at(&temps.1[*src])?);
+        let natural = old.eps == [0.0; 6] && old.sig == [0.0; 6] && old.p == 0.0;
+        let tm = if th.natural_start && natural { *tref } else { at(&temps.0[*src])? };
+        let tp = at(&temps.1[*src])?;
         let (plus, alpha_p) = law(tp)?;
         let (minus, alpha_m) = if tm == tp { (plus.clone(), alpha_p) } else { law(tm)? };
         let own = &self.laws[i];
@@ -252,7 +259,7 @@ impl Physics for Plastic {
                     )))
                 };
                 let thermal = match &temps {
-                    Some((t0, t1)) => self.thermal_law(i, k, (t0, t1)).map_err(fail)?,
+                    Some((t0, t1)) => self.thermal_law(i, k, old, (t0, t1)).map_err(fail)?,
                     None => None,
                 };
                 let (st, d) = match &thermal {

@@ -370,6 +370,30 @@ pub fn plastic(cfg: &Settings, chmat: &ConceptRef) -> Result<Plastic> {
     })
 }
 
+/// Whether AFFE_VARC's temperature acts on the elastic law itself on some cell (ELAS_FO's E, NU or ALPHA a
+/// function or formula of TEMP): the law must then follow the temperature point by point ([`plastic`]'s
+/// laws do, ELAS among them), not once per cell.
+pub fn elasticity_follows_temperature(chmat: &ConceptRef) -> bool {
+    let data = chmat.data();
+    let ConceptData::MaterialField(MaterialField { varc, cells, .. }) = &*data else { return false };
+    let of_temp = |v: &MatValue| match v {
+        MatValue::Func(c) => match &*c.data() {
+            ConceptData::Function(f) => f.nom_para == "TEMP",
+            ConceptData::Formula(f) => f.nom_para.iter().any(|p| p == "TEMP"),
+            _ => false,
+        },
+        _ => false,
+    };
+    varc.iter().flat_map(|v| v.cells.iter()).filter_map(|&c| cells.get(c).and_then(|m| m.as_ref())).any(|mc| {
+        let md = mc.data();
+        let ConceptData::Material(m) = &*md else { return false };
+        ["ELAS", "ELAS_FO"]
+            .iter()
+            .filter_map(|b| m.behaviours.get(*b))
+            .any(|b| ["E", "NU", "ALPHA"].iter().filter_map(|p| b.get(*p)).any(of_temp))
+    })
+}
+
 /// Per mesh cell, the VALE_REF of the AFFE_VARC temperature that covers it (the last occurrence).
 fn temperature_refs(chmat: &ConceptRef, ncells: usize) -> Vec<Option<f64>> {
     let mut out = vec![None; ncells];
@@ -425,7 +449,7 @@ fn plastic_temperature(
         }
         sources.push(varc_source(v, nnodes)?);
     }
-    Ok(Temperature { sources, cells })
+    Ok(Temperature { sources, cells, natural_start: cfg.statics() })
 }
 
 /// Per mesh cell of the problem's bulk under AFFE_VARC's temperature: the temperature of its nodes at `t`

@@ -33,6 +33,30 @@ fn node_columns(mesh: &crate::mesh::Mesh, node: usize, absc: Option<f64>) -> Vec
     row
 }
 
+/// The curvilinear abscissa of each node along the nodes in their order (`rvabsc`; a node met twice keeps
+/// its first).
+fn abscissas(mesh: &crate::mesh::Mesh, nodes: &[usize]) -> std::collections::HashMap<usize, f64> {
+    let mut absc = std::collections::HashMap::new();
+    let mut s_acc = 0.0;
+    for (j, &node) in nodes.iter().enumerate() {
+        if j > 0 {
+            let (a, b) = (mesh.coords[nodes[j - 1]], mesh.coords[node]);
+            s_acc += ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt();
+        }
+        absc.entry(node).or_insert(s_acc);
+    }
+    absc
+}
+
+/// The nodes of an occurrence: named alone (NOEUD, GROUP_NO) in the order given; with cells, the mesh's.
+fn occurrence_nodes(mesh: &crate::mesh::Mesh, occ: &Args, mesh_name: &str) -> Result<Vec<usize>> {
+    if occ.has("GROUP_MA") || occ.has("MAILLE") || occ.has("TOUT") {
+        crate::stages::select::select_nodes(mesh, occ, mesh_name)
+    } else {
+        crate::stages::select::nodes_in_order(mesh, occ, mesh_name)
+    }
+}
+
 /// EXTRACTION from a nodal field given by CHAM_GD (CREA_CHAMP's fields): one row per selected node,
 /// with the columns INTITULE, CHAM_GD, NOEUD, its coordinates and the components asked for.
 fn field_rows(occ: &Args, intitule: &str, fc: &crate::concepts::ConceptRef) -> Result<Vec<Vec<(String, Cell)>>> {
@@ -44,7 +68,9 @@ fn field_rows(occ: &Args, intitule: &str, fc: &crate::concepts::ConceptRef) -> R
         return Err(occ.err("CHAM_GD", format!("{} is a field of functions: not supported yet", fc.label())));
     }
     let mesh = data.mesh_concept.mesh()?;
-    let nodes = crate::stages::select::select_nodes(&mesh, occ, &data.mesh_concept.label())?;
+    let nodes = occurrence_nodes(&mesh, occ, &data.mesh_concept.label())?;
+    let absc = abscissas(&mesh, &nodes);
+    let cells_given = occ.has("GROUP_MA") || occ.has("MAILLE") || occ.has("TOUT");
     let comps: Vec<String> =
         if occ.text("TOUT_CMP") == Some("OUI") { components.clone() } else { occ.texts("NOM_CMP") };
     let ks: Vec<usize> = comps
@@ -63,7 +89,7 @@ fn field_rows(occ: &Args, intitule: &str, fc: &crate::concepts::ConceptRef) -> R
             ("INTITULE".to_string(), Cell::Text(intitule.to_string())),
             ("CHAM_GD".to_string(), Cell::Text(fc.label())),
         ];
-        row.extend(node_columns(&mesh, node, None));
+        row.extend(node_columns(&mesh, node, absc.get(&node).copied().filter(|_| !cells_given)));
         for (c, &k) in comps.iter().zip(&ks) {
             let v = values[node * n + k];
             row.push((c.clone(), if v.is_nan() { Cell::Empty } else { Cell::Real(v) }));
@@ -133,12 +159,7 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         } else {
             r.steps.iter().collect()
         };
-        // Nodes named alone (NOEUD, GROUP_NO) are taken in the order given; with cells, in the mesh's.
-        let nodes = if occ.has("GROUP_MA") || occ.has("MAILLE") || occ.has("TOUT") {
-            crate::stages::select::select_nodes(&mesh, occ, &mesh_name)?
-        } else {
-            crate::stages::select::nodes_in_order(&mesh, occ, &mesh_name)?
-        };
+        let nodes = occurrence_nodes(&mesh, occ, &mesh_name)?;
         // TRAC_NOR (2D): the normal trace on the line the nodes form, in their order (`rvrlln`).
         let normals = if occ.text("TRAC_NOR") == Some("OUI") {
             if mesh.dim != 2 {
@@ -149,16 +170,7 @@ pub fn post_releve_t(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         } else {
             None
         };
-        // The curvilinear abscissa along the nodes in their order (`rvabsc`).
-        let mut absc = std::collections::HashMap::new();
-        let mut s_acc = 0.0;
-        for (j, &node) in nodes.iter().enumerate() {
-            if j > 0 {
-                let (a, b) = (mesh.coords[nodes[j - 1]], mesh.coords[node]);
-                s_acc += ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt();
-            }
-            absc.entry(node).or_insert(s_acc);
-        }
+        let absc = abscissas(&mesh, &nodes);
         let cells_sel = if occ.has("GROUP_MA") || occ.has("MAILLE") || occ.has("TOUT") {
             Some(crate::stages::select::select_cells(&mesh, occ, &mesh_name)?)
         } else {

@@ -28,7 +28,9 @@ pub fn stat_non_line(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         }
     }
     let chmat = cfg.chmat()?;
-    let plasticity = cfg.behaviours.iter().any(|b| b.relation != "ELAS");
+    // The plastic physics also carries ELAS laws that follow AFFE_VARC's temperature point by point.
+    let plasticity = cfg.behaviours.iter().any(|b| b.relation != "ELAS")
+        || crate::stages::core::problem::elasticity_follows_temperature(&chmat);
     let mut log = StepLog::default();
     let (steps, describe, unknowns) = if plasticity {
         let p = plastic(&cfg, &chmat)?;

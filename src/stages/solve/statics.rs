@@ -8,7 +8,7 @@ use crate::concepts::ConceptData;
 use crate::diag::Result;
 use crate::fem::physics::Physics;
 use crate::stages::core::driver::{Driver, StepLog};
-use crate::stages::core::problem::elastic;
+use crate::stages::core::problem::{elastic, elasticity_follows_temperature, plastic};
 use crate::stages::core::settings::{Command, PhysicsKind, Settings};
 use crate::stages::core::solver::solver_log;
 use crate::stages::Ctx;
@@ -21,12 +21,30 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     }
     let t_all = Instant::now();
     let chmat = cfg.chmat()?;
-    let p = elastic(&cfg, &chmat)?;
-    let t_setup = t_all.elapsed();
-    let mut u = vec![0.0; p.unknowns()];
-    let mut t0 = cfg.times[0];
     let mut log = StepLog::default();
-    let steps = Driver::new(&cfg, &p, cfg.solveur.opts).run(&mut u, &mut t0, false, &mut log)?;
+    // Parameters of ELAS_FO depending on AFFE_VARC's temperature: the elastic law at each point's
+    // temperature (the plastic physics with ELAS everywhere, whose increments add up to σ = D(T) (ε − ε_th)).
+    let (steps, modelisation, unknowns, t_setup) = if elasticity_follows_temperature(&chmat) {
+        let p = plastic(&cfg, &chmat)?;
+        let t_setup = t_all.elapsed();
+        let mut u = vec![0.0; p.unknowns()];
+        let mut state = p.initial_state();
+        let mut steps = Driver::new(&cfg, &p, cfg.solveur.opts).run(&mut u, &mut state, false, &mut log)?;
+        for s in &mut steps {
+            s.fields.remove("VARI_ELGA");
+            if !cfg.sief {
+                s.fields.remove("SIEF_ELGA");
+            }
+        }
+        (steps, p.elastic.modelisation, p.unknowns(), t_setup)
+    } else {
+        let p = elastic(&cfg, &chmat)?;
+        let t_setup = t_all.elapsed();
+        let mut u = vec![0.0; p.unknowns()];
+        let mut t0 = cfg.times[0];
+        let steps = Driver::new(&cfg, &p, cfg.solveur.opts).run(&mut u, &mut t0, false, &mut log)?;
+        (steps, p.modelisation, p.unknowns(), t_setup)
+    };
     let (info, residual, refinements) = log.last_solve.clone().expect("one solve");
     let t = &log.solver;
     let eliminated = log.eliminated.iter().filter(|e| **e).count();
@@ -37,8 +55,8 @@ pub fn meca_statique(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
          residual {residual:.1e}\n  \
          time: element stiffnesses {:.3} s, assembly {:.3} s, factorization {t_fact:.3} s, solve {t_solve:.3} s, \
          fields and the rest {:.3} s, total {total:.3} s\n",
-        p.modelisation.name(),
-        p.unknowns(),
+        modelisation.name(),
+        unknowns,
         log.solved,
         info.method.unwrap_or(crate::solve::Method::Lu),
         t_setup.as_secs_f64(),

@@ -59,6 +59,46 @@ fn the_restrained_bar_scene_holds_back_its_thermal_strain() {
     let _ = std::fs::remove_dir_all(&out);
 }
 
+/// ELAS_FO whose Young modulus is a function of TEMP, in MECA_STATIQUE under AFFE_VARC: the restrained bar
+/// scene with E(T) falling linearly from 2e11 at 0 to 1e11 at 200 — at T1 = 120 the axial stress is
+/// −E(120) α ΔT = −1.68e8 at every point (the law taken at each point's temperature), and POST_ELEM's
+/// ENER_POT, which needs constant parameters, stops by name.
+#[test]
+fn a_young_modulus_of_the_temperature_in_meca_statique() {
+    let material = (
+        "STEEL = DEFI_MATERIAU(ELAS=_F(E=E, NU=0.3, ALPHA=ALPHA), THER=_F(LAMBDA=54.6, RHO_CP=3.71e6))",
+        "FE = DEFI_FONCTION(NOM_PARA=\"TEMP\", VALE=(0.0, 2.0e11, 200.0, 1.0e11))\n\
+         FNU = DEFI_CONSTANTE(VALE=0.3)\n\
+         FALPHA = DEFI_CONSTANTE(VALE=ALPHA)\n\
+         STEEL = DEFI_MATERIAU(ELAS_FO=_F(E=FE, NU=FNU, ALPHA=FALPHA, TEMP_DEF_ALPHA=TREF), \
+         THER=_F(LAMBDA=54.6, RHO_CP=3.71e6))",
+    );
+    let sig = ("SIG = -E * ALPHA * (T1 - TREF)", "SIG = -1.4e11 * ALPHA * (T1 - TREF)");
+    let no_epot = [
+        ("EPOT = POST_ELEM(RESULTAT=RES, ENER_POT=_F(TOUT=\"OUI\"))\n", ""),
+        ("TEST_TABLE(TABLE=EPOT, NOM_PARA=\"TOTALE\", VALE_CALC=WPOT, VALE_REFE=WPOT, PRECISION=1.0e-9, REFERENCE=\"ANALYTIQUE\")\n", ""),
+        ("TEST_TABLE(TABLE=EPOT, NOM_PARA=\"POUR_CENT\", VALE_CALC=100.0, VALE_REFE=100.0, PRECISION=1.0e-12, REFERENCE=\"ANALYTIQUE\")\n", ""),
+    ];
+    let units = [(20, "strip_quad8.med")];
+    let mut edits = vec![material, sig];
+    edits.extend(no_epot);
+    let (code, err, out) = run_scene_edited(&scratch!("elas_fo"), "heat_restrained_bar", &units, &edits);
+    assert_eq!(code, 0, "{err}{out}");
+    assert_eq!(out.lines().filter(|l| l.trim_start().starts_with("OK  ANALYTIQUE")).count(), 4, "{out}");
+    assert!(out.contains("checks: 6 OK, 0 NOOK"), "{out}");
+    let (code, err, _) = run_scene_edited(&scratch!("elas_fo_epot"), "heat_restrained_bar", &units, &[material, sig]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("POST_ELEM") && err.contains("TEMP"), "{err}");
+}
+
+/// Code_Aster's hplp300a: a plate heated through THER_LINEAIRE, ELAS_FO's E and NU functions of TEMP in
+/// MECA_STATIQUE under AFFE_VARC, the displacements read by POST_RELEVE_T along groups of nodes (with their
+/// ABSC_CURV): every check OK.
+#[test]
+fn corpus_elasticity_of_the_temperature_passes() {
+    run_corpus_cases(&scratch!("corpus_elas_fo"), &[("hplp300a", 33)]);
+}
+
 /// Timoshenko's thick cylinder under the logarithmic temperature of its wall (AXIS, no axial strain): the
 /// hoop stress at the nodes (CALC_CHAMP SIGM_NOEU, with the thermal strain) within 0.05 % at the inner face
 /// and 4.2e-4 in L2 across the wall at N = 32.
