@@ -115,7 +115,6 @@ fn post_elem() -> Command {
         simp("CARA_ELEM").co(&[ConceptKind::CaraElem]),
         simp("NUME_COUCHE").i().d(1),
         simp("NIVE_COUCHE").txt().d("MOY").one_of(&["INF", "SUP", "MOY"]),
-        simp("ANGLE").i().d(0),
         simp("MODE_FOURIER").i().d(0),
         simp("CHAM_GD").co(&[ConceptKind::ChamNo, ConceptKind::ChamElem]),
         simp("RESULTAT").co(&[ConceptKind::EvolElas, ConceptKind::EvolNoli]),

@@ -411,6 +411,9 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                 }
             }
             if wanted.iter().any(|o| o.starts_with("ENEL_")) {
+                if !mat.is_isotropic() {
+                    return Err(a.err("ENERGIE", "ENEL_* of an anisotropic material is not supported yet"));
+                }
                 let sv = sig_elga[c].as_ref().expect("computed above");
                 let w: Vec<[f64; 6]> = points_of(sv, ns)
                     .iter()
@@ -420,9 +423,6 @@ pub fn calc_champ(ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
                         out
                     })
                     .collect();
-                if !mat.is_isotropic() {
-                    return Err(a.err("ENERGIE", "ENEL_* of an anisotropic material is not supported yet"));
-                }
                 enel_elga[c] = Some(w.iter().map(|x| x[0]).collect::<Vec<_>>());
                 let t = mesh.cell_types[c];
                 enel_elno[c] = Some(flat(&elasticity::gauss_to_nodes(md, t, &w, 1), 1));

@@ -37,13 +37,14 @@ pub fn post_elem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
         .into_iter()
         .find(|q| a.has(q.keyword()))
         .ok_or_else(|| a.err("ENER_POT", "POST_ELEM needs one of ENER_POT, ENER_ELAS, ENER_TOTALE"))?;
-    a.refuse(&["CARA_ELEM", "MODE_FOURIER", "ANGLE", "NUME_COUCHE", "NIVE_COUCHE", "LIST_ORDRE", "LIST_INST"])?;
+    a.refuse(&["CARA_ELEM", "MODE_FOURIER", "NUME_COUCHE", "NIVE_COUCHE", "LIST_ORDRE", "LIST_INST"])?;
     let (model, chmat, steps, result) = match (a.concept("RESULTAT"), a.concept("CHAM_GD")) {
         (Some(rc), _) => {
             a.refuse(&["MODELE", "CHAM_MATER"])?;
             let r = rc.result()?;
             let chmat = r.material.clone().ok_or_else(|| a.err("RESULTAT", "the result has no material field"))?;
-            (r.model.clone(), chmat, select_steps(a, &r.steps)?, Some(rc.clone()))
+            let steps = crate::stages::select::selected_steps(&r, a, &rc.label())?.into_iter().cloned().collect();
+            (r.model.clone(), chmat, steps, Some(rc.clone()))
         }
         (None, Some(fc)) => {
             if q != Quantity::Potential {
@@ -143,35 +144,6 @@ pub fn post_elem(_ctx: &mut Ctx, a: &Args) -> Result<Option<ConceptData>> {
     Ok(Some(ConceptData::Table(t)))
 }
 
-/// The steps asked for: NUME_ORDRE, INST (within CRITERE / PRECISION), or every one, in their order.
-fn select_steps(a: &Args, steps: &[Step]) -> Result<Vec<Step>> {
-    let orders = a.ints("NUME_ORDRE");
-    let insts = a.reals("INST");
-    let prec = a.real("PRECISION").unwrap_or(1e-6);
-    let relative = a.text("CRITERE") != Some("ABSOLU");
-    let mut out = Vec::new();
-    for o in &orders {
-        let s = steps
-            .iter()
-            .find(|s| s.nume_ordre == *o)
-            .ok_or_else(|| a.err("NUME_ORDRE", format!("the result has no order {o}")))?;
-        out.push(s.clone());
-    }
-    for t in &insts {
-        let tol = if relative { prec * t.abs() } else { prec };
-        let s = steps
-            .iter()
-            .find(|s| (s.inst - t).abs() <= tol)
-            .ok_or_else(|| a.err("INST", format!("the result has no instant {t} (PRECISION {prec})")))?;
-        out.push(s.clone());
-    }
-    if orders.is_empty() && insts.is_empty() {
-        out = steps.to_vec();
-        out.sort_by_key(|s| s.nume_ordre);
-    }
-    Ok(out)
-}
-
 /// The relation of COMPORTEMENT on each cell of the result (the last occurrence covering it; ELAS for a
 /// result of an elastic command).
 fn relations_of(a: &Args, rc: &ConceptRef, p: &Problem) -> Result<Vec<String>> {
@@ -260,10 +232,9 @@ fn energies(
         let mut sum = 0.0;
         for (k, (g, s)) in geom.iter().zip(&sig).enumerate() {
             let temp = temps[c].as_ref().map(|tn| tn.iter().zip(&g.n).map(|(x, n)| x * n).sum::<f64>());
-            let (law, _) = if q == Quantity::Potential {
-                (*iso, 0.0)
-            } else {
-                problem::elastic_of_at(m, name, temp).map_err(|e| a.locate(e, "RESULTAT"))?
+            let law = match q {
+                Quantity::Potential => *iso,
+                _ => problem::elastic_of_at(m, name, temp).map_err(|e| a.locate(e, "RESULTAT"))?.0,
             };
             if !law.is_isotropic() {
                 return Err(a.err(
